@@ -1,0 +1,54 @@
+//! Atomic file output: a file appears under its final name complete, or not at all.
+
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
+/// Writes `path` by calling `write` on a temporary file in the same directory, then renaming it
+/// over `path`. If `write` fails, or the process dies, no file exists under `path` (an existing one
+/// is left untouched) and the temporary file is removed.
+pub fn write_atomically(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let tmp = tempfile::Builder::new()
+        .prefix(".swell-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| Error::io(path, e))?;
+    {
+        let mut out = BufWriter::new(tmp.as_file());
+        write(&mut out)?;
+        out.flush().map_err(|e| Error::io(path, e))?;
+    }
+    tmp.as_file().sync_all().map_err(|e| Error::io(path, e))?;
+    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_write_leaves_nothing_behind() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.bin");
+        let r = write_atomically(&path, |w| {
+            w.write_all(b"partial").unwrap();
+            Err(Error::invalid("test", "fails half way"))
+        });
+        assert!(r.is_err());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        write_atomically(&path, |w| w.write_all(b"whole").map_err(|e| Error::io("x", e))).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"whole");
+    }
+
+    #[test]
+    fn a_missing_directory_is_an_error_naming_the_file() {
+        let e = write_atomically(Path::new("/nonexistent-dir/x.png"), |_| Ok(())).unwrap_err();
+        assert!(e.to_string().starts_with("/nonexistent-dir/x.png"), "{e}");
+    }
+}

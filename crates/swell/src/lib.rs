@@ -1,0 +1,65 @@
+//! # swell: water surfaces over procedural terrain, simulated and rendered on the CPU
+//!
+//! The crate follows the data flow of a frame:
+//!
+//! ```text
+//! parameters ─▶ water / terrain model ─▶ surface mesh ─▶ scene ─▶ rasterizer + shading ─▶ image / file
+//!   (scene)        (water::*)              (mesh::*)     (scene::*)  (raster::*, shading::*)  (export::*)
+//! ```
+//!
+//! A program that only wants moving water needs [`water`] and [`mesh`]; the renderer is optional.
+//!
+//! ## Conventions (stated once, here)
+//!
+//! - **Units**: SI everywhere in the library: metres, seconds, radians, kilograms. Degrees and other
+//!   units appear only at the edges (scene files, CLI) and carry the unit in the key (`fov_y_deg`).
+//! - **Axes**: right-handed, **+Y up**. The water surface at rest is the plane **y = 0**; waves are
+//!   described over the horizontal (x, z) plane, so a 2-D horizontal vector `Vec2(a, b)` means world
+//!   `(x = a, z = b)`.
+//! - **Camera**: given by `eye`, `target`, `up`, `fov_y_deg`, `near`, `far`, with OpenGL's look-at and
+//!   perspective: view space looks down −Z, clip space has z in [−w, w]. Transforms are named
+//!   `a_from_b` (`view_from_world`, `clip_from_view`).
+//! - **Images**: the top row comes first in memory; colours are linear RGB until the final gamma
+//!   (sRGB) encoding.
+//! - **Time** is `f64` seconds so that phases stay exact over long runs; per-vertex work is `f32`.
+//! - **Exported files** follow glTF conventions (metres, +Y up, right-handed).
+//! - **Randomness** always comes from an explicit seed; the same inputs give bit-identical output on
+//!   any number of threads.
+//!
+//! ```
+//! use swell::mesh::SurfaceMesh;
+//! use swell::math::GridSpec;
+//! use swell::water::{Gerstner, GerstnerWave, WaveModel};
+//! use glam::Vec2;
+//!
+//! // One 20 m wave travelling along +X over a 100 m x 100 m patch of 64 x 64 cells.
+//! let wave = GerstnerWave { amplitude: 0.5, wavelength: 20.0, speed: 5.6,
+//!                           direction: Vec2::X, steepness: 0.5 };
+//! let model = Gerstner::new(vec![wave]).unwrap();
+//! let grid = GridSpec::centered(Vec2::new(100.0, 100.0), 64, 64).unwrap();
+//! let mut mesh = SurfaceMesh::new(grid);
+//! mesh.displace(&model, 2.0);
+//! // +Y is up and water at rest is y = 0: every height stays within the amplitude.
+//! assert!(mesh.positions.iter().all(|p| p.y.abs() <= 0.5 + 1e-6));
+//! assert!(mesh.normals.iter().all(|n| n.y > 0.0));
+//! // A single point, without any mesh:
+//! let h = model.height_at(10.0, -3.0, 2.0);
+//! assert!(h.abs() <= 0.5 + 1e-6);
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod export;
+pub mod math;
+pub mod mesh;
+pub mod raster;
+pub mod render;
+pub mod scene;
+pub mod shading;
+pub mod water;
+
+pub use error::{Error, Result};
+
+/// Standard gravity g in m/s², used by every dispersion relation.
+pub const GRAVITY: f32 = 9.81;

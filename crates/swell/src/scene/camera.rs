@@ -1,0 +1,85 @@
+//! The pinhole camera: OpenGL look-at and perspective.
+
+use glam::{Mat4, Vec3};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
+
+/// A perspective camera as OpenGL defines it: view space looks down −Z, clip z in [−w, w].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camera {
+    /// Position of the eye, world metres.
+    pub eye: Vec3,
+    /// Point looked at, world metres; must differ from `eye`.
+    pub target: Vec3,
+    /// Up direction (world); not parallel to the view direction. Default +Y.
+    #[serde(default = "default_up")]
+    pub up: Vec3,
+    /// Vertical field of view in degrees, in (0, 179]. Default 45.
+    #[serde(default = "default_fov")]
+    pub fov_y_deg: f32,
+    /// Near clipping distance in metres, > 0. Default 0.1.
+    #[serde(default = "default_near")]
+    pub near: f32,
+    /// Far clipping distance in metres, > `near`. Default 5000.
+    #[serde(default = "default_far")]
+    pub far: f32,
+}
+
+fn default_up() -> Vec3 {
+    Vec3::Y
+}
+fn default_fov() -> f32 {
+    45.0
+}
+fn default_near() -> f32 {
+    0.1
+}
+fn default_far() -> f32 {
+    5000.0
+}
+
+impl Camera {
+    /// Checks the camera, naming keys under `key` (normally `camera`).
+    pub fn validate(&self, key: &str) -> Result<()> {
+        check_finite_vec(&format!("{key}.eye"), &self.eye.to_array())?;
+        check_finite_vec(&format!("{key}.target"), &self.target.to_array())?;
+        check_finite_vec(&format!("{key}.up"), &self.up.to_array())?;
+        check_range(&format!("{key}.fov_y_deg"), self.fov_y_deg, 1e-3, 179.0)?;
+        check_positive(&format!("{key}.near"), self.near)?;
+        if !(self.far.is_finite() && self.far > self.near) {
+            return Err(Error::out_of_range(
+                format!("{key}.far"),
+                self.far,
+                format!("({}, inf) (greater than near)", self.near),
+            ));
+        }
+        let forward = self.target - self.eye;
+        if forward.length() < 1e-6 {
+            return Err(Error::invalid(format!("{key}.target"), "must differ from camera.eye"));
+        }
+        if forward.normalize().cross(self.up).length() < 1e-6 {
+            return Err(Error::invalid(
+                format!("{key}.up"),
+                format!("{:?} is parallel to the view direction", self.up.to_array()),
+            ));
+        }
+        Ok(())
+    }
+
+    /// World to view transform (OpenGL `lookAt`).
+    pub fn view_from_world(&self) -> Mat4 {
+        Mat4::look_at_rh(self.eye, self.target, self.up)
+    }
+
+    /// View to clip transform (OpenGL `gluPerspective`) for an image of `aspect` = width / height.
+    pub fn clip_from_view(&self, aspect: f32) -> Mat4 {
+        Mat4::perspective_rh_gl(self.fov_y_deg.to_radians(), aspect, self.near, self.far)
+    }
+
+    /// World to clip transform.
+    pub fn clip_from_world(&self, aspect: f32) -> Mat4 {
+        self.clip_from_view(aspect) * self.view_from_world()
+    }
+}

@@ -1,0 +1,21 @@
+//! Scenes: the description of a frame (camera, lights, sky, water, render settings), the TOML file
+//! format that stores it, the built-in presets, and the runnable [`World`] built from it.
+
+mod camera;
+mod light;
+mod presets;
+mod render_settings;
+#[allow(clippy::module_inception)]
+mod scene;
+mod sky;
+mod water_spec;
+mod world;
+
+pub use camera::Camera;
+pub use light::{Incident, Light};
+pub use presets::{preset, Preset, PRESETS};
+pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_THREADS};
+pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
+pub use sky::Sky;
+pub use water_spec::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
+pub use world::{WaterBody, World};

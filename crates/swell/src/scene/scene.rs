@@ -1,0 +1,152 @@
+//! The scene file: a versioned TOML document composing every part of a frame.
+
+use serde::{Deserialize, Serialize};
+
+use super::water_spec::{deserialize_at, WaterSpec};
+use super::{Camera, Light, RenderSettings, Sky};
+use crate::error::{Error, Result};
+
+/// The scene-file format version this build reads and writes.
+pub const SCENE_VERSION: u32 = 1;
+
+/// Most lights a scene may have.
+pub const MAX_LIGHTS: usize = 16;
+
+/// Everything needed to simulate and render: camera, lights, sky, water and render settings.
+///
+/// Read with [`Scene::from_toml`], written with [`Scene::to_toml`]; `docs/scene-format.md` lists
+/// every key with its unit, default and range.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// File-format version; must be [`SCENE_VERSION`].
+    pub version: u32,
+    /// The camera.
+    pub camera: Camera,
+    /// Light sources, 0 to [`MAX_LIGHTS`]; `[[light]]` in the file.
+    pub lights: Vec<Light>,
+    /// The sky.
+    pub sky: Sky,
+    /// The water body, if any.
+    pub water: Option<WaterSpec>,
+    /// Image settings.
+    pub render: RenderSettings,
+}
+
+/// The scene's sections other than `[water]`, which needs a two-step read (model first).
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    version: u32,
+    camera: Camera,
+    #[serde(default, rename = "light")]
+    lights: Vec<Light>,
+    #[serde(default)]
+    sky: Sky,
+    #[serde(default)]
+    render: RenderSettings,
+}
+
+impl Scene {
+    /// Parses and validates a scene; `source` (a path or `preset NAME`) is named in errors.
+    pub fn from_toml(text: &str, source: &str) -> Result<Self> {
+        let mut table: toml::Table = toml::from_str(text)
+            .map_err(|e| Error::Parse { path: source.into(), message: e.to_string().trim_end().into() })?;
+        let water = match table.remove("water") {
+            Some(toml::Value::Table(t)) => Some(WaterSpec::from_table(t, source)?),
+            Some(other) => {
+                return Err(Error::Parse {
+                    path: source.into(),
+                    message: format!("water must be a table ([water]), found a {}", other.type_str()),
+                })
+            }
+            None => None,
+        };
+        let file: SceneFile = deserialize_at(table, "", source)?;
+        let scene = Scene {
+            version: file.version,
+            camera: file.camera,
+            lights: file.lights,
+            sky: file.sky,
+            water,
+            render: file.render,
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Writes the scene as TOML that [`Scene::from_toml`] reads back to an equal scene.
+    pub fn to_toml(&self) -> String {
+        let file = SceneFile {
+            version: self.version,
+            camera: self.camera,
+            lights: self.lights.clone(),
+            sky: self.sky,
+            render: self.render,
+        };
+        let mut table = toml::Table::try_from(&file).expect("scene sections serialise to TOML");
+        if let Some(w) = &self.water {
+            table.insert("water".into(), toml::Value::Table(w.to_table()));
+        }
+        toml::to_string_pretty(&table).expect("a TOML table always serialises")
+    }
+
+    /// Checks every value against its range; the error names the key path, value and range.
+    ///
+    /// Model parameters are checked again when the model is built ([`super::World::new`]).
+    pub fn validate(&self) -> Result<()> {
+        if self.version != SCENE_VERSION {
+            return Err(Error::out_of_range(
+                "version",
+                self.version,
+                format!("[{SCENE_VERSION}, {SCENE_VERSION}] (this build reads version {SCENE_VERSION})"),
+            ));
+        }
+        self.camera.validate("camera")?;
+        if self.lights.len() > MAX_LIGHTS {
+            return Err(Error::out_of_range("light", format!("{} lights", self.lights.len()), format!("[0, {MAX_LIGHTS}] lights")));
+        }
+        for (i, l) in self.lights.iter().enumerate() {
+            l.validate(&format!("light[{i}]"))?;
+        }
+        self.sky.validate("sky")?;
+        self.render.validate("render")?;
+        if let Some(w) = &self.water {
+            w.validate()?;
+            w.model.build()?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MINIMAL: &str = "version = 1\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n";
+
+    #[test]
+    fn a_minimal_scene_gets_defaults() {
+        let s = Scene::from_toml(MINIMAL, "t").unwrap();
+        assert_eq!(s.render.width, 1280);
+        assert!(s.water.is_none());
+        assert_eq!(s.camera.fov_y_deg, 45.0);
+    }
+
+    #[test]
+    fn bad_input_names_key_value_and_range() {
+        let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidth = 0\n"), "t").unwrap_err();
+        assert_eq!(e.to_string(), "render.width = 0 is outside [1, 16384]");
+        let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidht = 5\n"), "t").unwrap_err();
+        assert!(e.to_string().contains("unknown field `widht`"), "{e}");
+        let e = Scene::from_toml(&format!("{MINIMAL}[[light]]\ntype = 'directional'\ndirection = [0.0, 'a', 0.0]\n"), "t")
+            .unwrap_err();
+        assert!(e.to_string().contains("light[0]"), "{e}");
+        let e = Scene::from_toml("version = 2\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n", "t")
+            .unwrap_err();
+        assert!(e.to_string().starts_with("version = 2 is outside"), "{e}");
+        let e = Scene::from_toml("version = 1\n[camera\n", "f.toml").unwrap_err();
+        assert!(e.to_string().starts_with("f.toml: TOML parse error"), "{e}");
+        let e = Scene::from_toml(&format!("{MINIMAL}[render]\nexposure = nan\n"), "t").unwrap_err();
+        assert!(e.to_string().starts_with("render.exposure = NaN"), "{e}");
+    }
+}

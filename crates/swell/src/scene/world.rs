@@ -1,0 +1,57 @@
+//! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
+
+use super::{Scene, WaterMaterial};
+use crate::error::Result;
+use crate::mesh::SurfaceMesh;
+use crate::water::WaveModel;
+
+/// The water of a [`World`]: the model, the mesh it displaces and the material it is drawn with.
+pub struct WaterBody {
+    /// The wave model, built from the scene.
+    pub model: Box<dyn WaveModel>,
+    /// The displaced grid, updated by [`World::update`].
+    pub mesh: SurfaceMesh,
+    /// How it looks.
+    pub material: WaterMaterial,
+}
+
+/// A [`Scene`] with its models built; [`World::update`] moves it to a time.
+pub struct World {
+    /// The scene it was built from.
+    pub scene: Scene,
+    /// The water, if the scene has any.
+    pub water: Option<WaterBody>,
+    time: f64,
+}
+
+impl World {
+    /// Validates `scene`, builds its models and allocates its meshes (the only allocation: updates
+    /// reuse these buffers).
+    pub fn new(scene: Scene) -> Result<Self> {
+        scene.validate()?;
+        let water = match &scene.water {
+            Some(spec) => {
+                let model = spec.model.build()?;
+                let mesh = SurfaceMesh::new(spec.surface.grid()?);
+                Some(WaterBody { model, mesh, material: spec.material })
+            }
+            None => None,
+        };
+        let mut world = Self { scene, water, time: f64::NAN };
+        world.update(0.0);
+        Ok(world)
+    }
+
+    /// Moves every model to time `t` (s) and displaces the meshes.
+    pub fn update(&mut self, t: f64) {
+        if let Some(w) = &mut self.water {
+            w.mesh.displace(w.model.as_ref(), t);
+        }
+        self.time = t;
+    }
+
+    /// The time of the last [`World::update`], seconds.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+}

@@ -1,0 +1,27 @@
+//! Lights as seen from a surface point.
+
+use glam::Vec3;
+
+use crate::scene::{Light, Sky};
+
+/// Everything that lights a surface: the lights, the ambient term and the sky (for reflections).
+#[derive(Clone, Copy, Debug)]
+pub struct Environment<'a> {
+    /// Light sources.
+    pub lights: &'a [Light],
+    /// Ambient radiance added to every diffuse surface.
+    pub ambient: Vec3,
+    /// The sky, for reflections.
+    pub sky: &'a Sky,
+    /// Camera position, world metres.
+    pub eye: Vec3,
+}
+
+/// Ambient plus Lambert diffuse irradiance at `p` with unit normal `n`:
+/// `ambient + sum radiance * max(0, n.l)`.
+pub fn lambert(env: &Environment, p: Vec3, n: Vec3) -> Vec3 {
+    env.lights.iter().fold(env.ambient, |acc, light| {
+        let inc = light.incident(p);
+        acc + inc.radiance * n.dot(inc.to_light).max(0.0)
+    })
+}

@@ -1,0 +1,114 @@
+//! The contract every water surface model fulfils, and the machinery shared by analytic models.
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::math::GridSpec;
+
+/// A water surface model: displaced positions and normals of a grid at time `t`.
+///
+/// Contract:
+/// - positions are world metres with +Y up; the surface at rest is y = 0;
+/// - normals are unit length with a positive y component wherever the surface does not fold over;
+/// - `evaluate` writes every vertex of `grid` (row-major, see [`GridSpec`]) and allocates nothing;
+/// - output depends only on the model, `grid` and `t`: it is bit-identical on any thread count.
+pub trait WaveModel: Send + Sync {
+    /// Writes the displaced position and unit normal of each vertex of `grid` at time `t` (s).
+    ///
+    /// `positions` and `normals` must both have `grid.vertex_count()` elements.
+    fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]);
+
+    /// Height (m) of the displaced surface above the world point (x, z) at time `t` (s).
+    ///
+    /// Models that move water horizontally invert that motion; each model documents its accuracy.
+    fn height_at(&self, x: f32, z: f32, t: f64) -> f32;
+}
+
+/// Displacement and normal of the surface point that rests at a given (x, z).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// World displacement (m) from the rest position (x, 0, z).
+    pub offset: Vec3,
+    /// Unit surface normal at the displaced point.
+    pub normal: Vec3,
+}
+
+/// A model with a closed form per point: the displaced surface is `rest + offset(rest, t)`.
+pub trait PointWave: Send + Sync {
+    /// Per-frame constants (e.g. each wave's phase at `t`), computed once per frame in `f64` so that
+    /// phases stay exact for large `t`, then used by every vertex. Must not allocate.
+    type Frame: Send + Sync;
+
+    /// Computes the per-frame constants for time `t` (s).
+    fn frame(&self, t: f64) -> Self::Frame;
+
+    /// Displacement and normal of the point resting at `rest` = (x, z) in metres.
+    fn sample(&self, frame: &Self::Frame, rest: Vec2) -> SurfacePoint;
+}
+
+/// Evaluates a [`PointWave`] over `grid`, rows in parallel.
+///
+/// Each vertex depends only on its rest position, so the split over threads cannot change the output.
+pub fn evaluate_pointwise<W: PointWave>(
+    wave: &W,
+    grid: &GridSpec,
+    t: f64,
+    positions: &mut [Vec3],
+    normals: &mut [Vec3],
+) {
+    let n = grid.vertex_count();
+    assert!(
+        positions.len() == n && normals.len() == n,
+        "buffers must hold grid.vertex_count() = {n} vertices"
+    );
+    let frame = wave.frame(t);
+    let row = grid.verts_x();
+    positions
+        .par_chunks_mut(row)
+        .zip(normals.par_chunks_mut(row))
+        .enumerate()
+        .for_each(|(j, (prow, nrow))| {
+            for (i, (p, nrm)) in prow.iter_mut().zip(nrow.iter_mut()).enumerate() {
+                let rest = grid.rest_position(i, j);
+                let s = wave.sample(&frame, rest);
+                *p = Vec3::new(rest.x, 0.0, rest.y) + s.offset;
+                *nrm = s.normal;
+            }
+        });
+}
+
+/// Most fixed-point iterations [`height_by_inversion`] takes.
+pub const INVERSION_MAX_ITERATIONS: usize = 32;
+
+/// Horizontal residual (m) at which [`height_by_inversion`] stops.
+pub const INVERSION_TOLERANCE: f32 = 1e-5;
+
+/// Height above world (x, z) of a surface that also moves water horizontally.
+///
+/// Finds the rest point `r` whose displaced position lands on (x, z) by the fixed-point iteration
+/// `r <- (x, z) - horizontal_offset(r)`, then returns that point's height. The map is a contraction
+/// when the horizontal displacement's slope is below 1, which is exactly the no-loop condition every
+/// model enforces (Gerstner steepness <= 1); convergence slows near the sharp-crest limit, so the
+/// iteration stops after [`INVERSION_MAX_ITERATIONS`] or when the residual falls below
+/// [`INVERSION_TOLERANCE`] metres. The height error is the residual times the local slope.
+pub fn height_by_inversion<W: PointWave>(wave: &W, x: f32, z: f32, t: f64) -> f32 {
+    let frame = wave.frame(t);
+    let target = Vec2::new(x, z);
+    let mut rest = target;
+    let mut best = (f32::INFINITY, 0.0);
+    for _ in 0..INVERSION_MAX_ITERATIONS {
+        let s = wave.sample(&frame, rest);
+        let landed = rest + Vec2::new(s.offset.x, s.offset.z);
+        let residual = (landed - target).length();
+        if residual < best.0 {
+            best = (residual, s.offset.y);
+        }
+        if residual < INVERSION_TOLERANCE {
+            break;
+        }
+        // Damped step: plain fixed-point iteration oscillates near sharp crests, where the map's
+        // contraction factor approaches 1; halving the step keeps it convergent there.
+        rest += 0.75 * (target - landed);
+    }
+    best.1
+}
