@@ -1,1 +1,22 @@
-fn main(){}
+//! `swell`: render, export and bake water scenes from the command line.
+//!
+//! Raw arguments ([`args`]) are parsed apart from the resolved configuration each command builds;
+//! the commands themselves live in [`cmd`], one file each.
+
+mod args;
+mod cmd;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let cli = args::Cli::parse();
+    match cmd::run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,7 +1,8 @@
 //! PNG stills and GIF animations.
 
-use std::io::Write;
 use std::path::Path;
+
+use rayon::prelude::*;
 
 use super::write_atomically;
 use crate::error::{Error, Result};
@@ -16,29 +17,45 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()
     })
 }
 
-/// One palette-quantised GIF frame, ready to write (see [`encode_gif_frame`]).
-pub struct GifFrame(gif::Frame<'static>);
-
-/// Quantises an RGBA8 image to a 256-colour GIF frame shown for `delay_cs` hundredths of a second.
+/// Writes a looping GIF animation of `frame_count` frames, atomically.
 ///
-/// Quantisation (NeuQuant) is the slow part of GIF writing and frames are independent, so callers
-/// run this in parallel and then write the frames in order with [`write_gif`].
-pub fn encode_gif_frame(width: u16, height: u16, rgba: &[u8], delay_cs: u16) -> GifFrame {
-    let mut pixels = rgba.to_vec();
-    // Speed 10 is gif's recommended balance; 1 is best quality and ~10x slower.
-    let mut frame = gif::Frame::from_rgba_speed(width, height, &mut pixels, 10);
-    frame.delay = delay_cs;
-    GifFrame(frame)
-}
-
-/// Writes frames as a looping GIF animation, atomically.
-pub fn write_gif(path: &Path, width: u16, height: u16, frames: &[GifFrame]) -> Result<()> {
+/// `render(k, rgba)` fills `rgba` with frame k (RGBA8, `width` x `height`, top row first);
+/// `progress()` is called after each frame is written. Frames are produced in order, then
+/// palette-quantised (NeuQuant, the slow part) a batch at a time in parallel, so memory stays
+/// bounded however many frames there are.
+pub fn write_gif(
+    path: &Path,
+    width: u16,
+    height: u16,
+    frame_count: usize,
+    delay_cs: u16,
+    mut render: impl FnMut(usize, &mut Vec<u8>) -> Result<()>,
+    mut progress: impl FnMut(),
+) -> Result<()> {
     let gif_err = |e: gif::EncodingError| Error::Image { path: path.into(), message: e.to_string() };
-    write_atomically(path, |out: &mut dyn Write| {
+    let batch = 2 * rayon::current_num_threads().max(1);
+    write_atomically(path, |out| {
         let mut enc = gif::Encoder::new(out, width, height, &[]).map_err(gif_err)?;
         enc.set_repeat(gif::Repeat::Infinite).map_err(gif_err)?;
-        for f in frames {
-            enc.write_frame(&f.0).map_err(gif_err)?;
+        let mut buffers: Vec<Vec<u8>> = vec![Vec::new(); batch.min(frame_count)];
+        for start in (0..frame_count).step_by(batch) {
+            let n = batch.min(frame_count - start);
+            for (k, buf) in buffers[..n].iter_mut().enumerate() {
+                render(start + k, buf)?;
+            }
+            let frames: Vec<gif::Frame> = buffers[..n]
+                .par_iter_mut()
+                .map(|rgba| {
+                    // Speed 10 is the gif crate's recommended balance; 1 is best and ~10x slower.
+                    let mut f = gif::Frame::from_rgba_speed(width, height, rgba, 10);
+                    f.delay = delay_cs;
+                    f
+                })
+                .collect();
+            for f in &frames {
+                enc.write_frame(f).map_err(gif_err)?;
+                progress();
+            }
         }
         Ok(())
     })

@@ -4,4 +4,4 @@ mod atomic;
 mod image_file;
 
 pub use atomic::write_atomically;
-pub use image_file::{encode_gif_frame, write_gif, write_png, GifFrame};
+pub use image_file::{write_gif, write_png};

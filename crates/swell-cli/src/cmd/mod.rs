@@ -1,0 +1,44 @@
+//! One file per subcommand, plus what they share: loading a scene and building a thread pool.
+
+mod presets;
+mod render;
+
+use swell::scene::{preset, Scene, MAX_THREADS};
+use swell::{Error, Result};
+
+use crate::args::{Cli, Command, SceneSource};
+
+/// Runs the parsed command line.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Render(a) => render::run(a),
+        Command::Presets => presets::run(),
+    }
+}
+
+/// Loads the scene named by `--preset` or `--scene`.
+pub fn load_scene(source: &SceneSource) -> Result<Scene> {
+    match (&source.preset, &source.scene) {
+        (Some(name), _) => preset(name),
+        (None, Some(path)) => {
+            let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+            let text = String::from_utf8(bytes).map_err(|_| Error::Parse {
+                path: path.display().to_string(),
+                message: "not UTF-8 text (a scene file is TOML)".into(),
+            })?;
+            Scene::from_toml(&text, &path.display().to_string())
+        }
+        (None, None) => unreachable!("clap requires one of --preset and --scene"),
+    }
+}
+
+/// A rayon pool with `threads` workers (0 = one per core).
+pub fn thread_pool(threads: u32) -> Result<rayon::ThreadPool> {
+    if threads > MAX_THREADS {
+        return Err(Error::out_of_range("--threads", threads, format!("[0, {MAX_THREADS}]")));
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads as usize)
+        .build()
+        .map_err(|e| Error::invalid("--threads", format!("cannot start {threads} threads: {e}")))
+}
