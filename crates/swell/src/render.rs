@@ -38,12 +38,8 @@ impl Renderer {
         let scene = &world.scene;
         let camera = &scene.camera;
         let aspect = width as f32 / height as f32;
-        let env = Environment {
-            lights: &scene.lights,
-            ambient: scene.render.ambient,
-            sky: &scene.sky,
-            eye: camera.eye,
-        };
+        let env =
+            Environment { lights: &scene.lights, ambient: scene.render.ambient, sky: &scene.sky, eye: camera.eye };
         let rays = SkyRays::new(camera, aspect);
         fb.clear_with(|x, y| {
             let ndc_x = 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
@@ -58,16 +54,15 @@ impl Renderer {
             let shading = material.shading;
             // Vertex stage: clip position, and for Gouraud the lit colour.
             self.clip_vertices.resize(mesh.positions.len(), ClipVertex::default());
-            self.clip_vertices
-                .par_iter_mut()
-                .zip(mesh.positions.par_iter().zip(mesh.normals.par_iter()))
-                .for_each(|(cv, (&p, &n))| {
+            self.clip_vertices.par_iter_mut().zip(mesh.positions.par_iter().zip(mesh.normals.par_iter())).for_each(
+                |(cv, (&p, &n))| {
                     cv.position = clip_from_world * Vec4::from((p, 1.0));
                     cv.varying = match shading {
                         Shading::Gouraud => shade_water(&env, material, p, n),
                         Shading::Flat => Vec3::ZERO,
                     };
-                });
+                },
+            );
             match shading {
                 Shading::Gouraud => {
                     draw(fb, &self.clip_vertices, &mesh.indices, Cull::None, &|f| f.varying);

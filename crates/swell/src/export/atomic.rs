@@ -13,11 +13,8 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&mut dyn Write) -> Resul
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let tmp = tempfile::Builder::new()
-        .prefix(".swell-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(|e| Error::io(path, e))?;
+    let tmp =
+        tempfile::Builder::new().prefix(".swell-").suffix(".tmp").tempfile_in(dir).map_err(|e| Error::io(path, e))?;
     {
         let mut out = BufWriter::new(tmp.as_file());
         write(&mut out)?;

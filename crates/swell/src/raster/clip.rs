@@ -68,10 +68,8 @@ pub fn clip_triangle<V: Varying>(tri: [ClipVertex<V>; 3], planes_crossed: u8) ->
                 // Interpolating in clip space (before the divide) is what keeps varyings
                 // perspective-correct at the new vertex.
                 let t = da / (da - db);
-                scratch.vertices[scratch.len] = ClipVertex {
-                    position: a.position.lerp(b.position, t),
-                    varying: a.varying.lerp(&b.varying, t),
-                };
+                scratch.vertices[scratch.len] =
+                    ClipVertex { position: a.position.lerp(b.position, t), varying: a.varying.lerp(&b.varying, t) };
                 scratch.len += 1;
             }
         }

@@ -67,15 +67,15 @@ impl Framebuffer {
             // NaN clamps to 0 here, so a bad sample can never reach a file as garbage.
             (e * 255.0 + 0.5).clamp(0.0, 255.0) as u8
         };
-        out.par_chunks_mut(4 * self.width as usize)
-            .zip(self.color.par_chunks(self.width as usize))
-            .for_each(|(dst, src)| {
+        out.par_chunks_mut(4 * self.width as usize).zip(self.color.par_chunks(self.width as usize)).for_each(
+            |(dst, src)| {
                 for (px, c) in dst.chunks_exact_mut(4).zip(src) {
                     px[0] = encode(c.x);
                     px[1] = encode(c.y);
                     px[2] = encode(c.z);
                     px[3] = 255;
                 }
-            });
+            },
+        );
     }
 }

@@ -67,7 +67,8 @@ where
                     let i = (c.y - y0) as usize * row + c.x as usize;
                     if c.depth < depth[i] {
                         depth[i] = c.depth;
-                        let frag = Fragment { varying: tri.interpolate(c.weights), primitive: tri.primitive, x: c.x, y: c.y };
+                        let frag =
+                            Fragment { varying: tri.interpolate(c.weights), primitive: tri.primitive, x: c.x, y: c.y };
                         color[i] = shader(&frag);
                     }
                 });

@@ -34,14 +34,7 @@ pub struct RenderSettings {
 
 impl Default for RenderSettings {
     fn default() -> Self {
-        Self {
-            width: 1280,
-            height: 720,
-            exposure: 1.0,
-            gamma: None,
-            ambient: Vec3::new(0.13, 0.15, 0.18),
-            threads: 0,
-        }
+        Self { width: 1280, height: 720, exposure: 1.0, gamma: None, ambient: Vec3::new(0.13, 0.15, 0.18), threads: 0 }
     }
 }
 

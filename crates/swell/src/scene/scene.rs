@@ -103,7 +103,11 @@ impl Scene {
         }
         self.camera.validate("camera")?;
         if self.lights.len() > MAX_LIGHTS {
-            return Err(Error::out_of_range("light", format!("{} lights", self.lights.len()), format!("[0, {MAX_LIGHTS}] lights")));
+            return Err(Error::out_of_range(
+                "light",
+                format!("{} lights", self.lights.len()),
+                format!("[0, {MAX_LIGHTS}] lights"),
+            ));
         }
         for (i, l) in self.lights.iter().enumerate() {
             l.validate(&format!("light[{i}]"))?;
@@ -138,8 +142,9 @@ mod tests {
         assert_eq!(e.to_string(), "render.width = 0 is outside [1, 16384]");
         let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidht = 5\n"), "t").unwrap_err();
         assert!(e.to_string().contains("unknown field `widht`"), "{e}");
-        let e = Scene::from_toml(&format!("{MINIMAL}[[light]]\ntype = 'directional'\ndirection = [0.0, 'a', 0.0]\n"), "t")
-            .unwrap_err();
+        let e =
+            Scene::from_toml(&format!("{MINIMAL}[[light]]\ntype = 'directional'\ndirection = [0.0, 'a', 0.0]\n"), "t")
+                .unwrap_err();
         assert!(e.to_string().contains("light[0]"), "{e}");
         let e = Scene::from_toml("version = 2\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n", "t")
             .unwrap_err();

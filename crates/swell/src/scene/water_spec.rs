@@ -46,17 +46,13 @@ impl WaterSurface {
     /// The sampling grid, checked (keys named under `water`).
     pub fn grid(&self) -> Result<GridSpec> {
         check_finite_vec("water.center", &self.center.to_array())?;
-        GridSpec::new(self.center - 0.5 * self.size, self.size, self.cells[0], self.cells[1]).map_err(
-            |e| match e {
-                // GridSpec names its own fields; say where they came from in the scene.
-                Error::OutOfRange { key, value, range } => Error::OutOfRange {
-                    key: key.replace("grid.", "water."),
-                    value,
-                    range,
-                },
-                other => other,
-            },
-        )
+        GridSpec::new(self.center - 0.5 * self.size, self.size, self.cells[0], self.cells[1]).map_err(|e| match e {
+            // GridSpec names its own fields; say where they came from in the scene.
+            Error::OutOfRange { key, value, range } => {
+                Error::OutOfRange { key: key.replace("grid.", "water."), value, range }
+            }
+            other => other,
+        })
     }
 }
 
@@ -135,10 +131,7 @@ impl WaterModelSpec {
             other => {
                 return Err(Error::Parse {
                     path: source.to_string(),
-                    message: format!(
-                        "water.model = \"{other}\" is not a model; valid: {}",
-                        WATER_MODELS.join(", ")
-                    ),
+                    message: format!("water.model = \"{other}\" is not a model; valid: {}", WATER_MODELS.join(", ")),
                 })
             }
         })

@@ -102,10 +102,7 @@ impl PointWave for SumOfSines {
             dydx += a * k.x * c;
             dydz += a * k.y * c;
         }
-        SurfacePoint {
-            offset: Vec3::new(0.0, y, 0.0),
-            normal: Vec3::new(-dydx, 1.0, -dydz).normalize(),
-        }
+        SurfacePoint { offset: Vec3::new(0.0, y, 0.0), normal: Vec3::new(-dydx, 1.0, -dydz).normalize() }
     }
 }
 

@@ -57,24 +57,17 @@ pub fn evaluate_pointwise<W: PointWave>(
     normals: &mut [Vec3],
 ) {
     let n = grid.vertex_count();
-    assert!(
-        positions.len() == n && normals.len() == n,
-        "buffers must hold grid.vertex_count() = {n} vertices"
-    );
+    assert!(positions.len() == n && normals.len() == n, "buffers must hold grid.vertex_count() = {n} vertices");
     let frame = wave.frame(t);
     let row = grid.verts_x();
-    positions
-        .par_chunks_mut(row)
-        .zip(normals.par_chunks_mut(row))
-        .enumerate()
-        .for_each(|(j, (prow, nrow))| {
-            for (i, (p, nrm)) in prow.iter_mut().zip(nrow.iter_mut()).enumerate() {
-                let rest = grid.rest_position(i, j);
-                let s = wave.sample(&frame, rest);
-                *p = Vec3::new(rest.x, 0.0, rest.y) + s.offset;
-                *nrm = s.normal;
-            }
-        });
+    positions.par_chunks_mut(row).zip(normals.par_chunks_mut(row)).enumerate().for_each(|(j, (prow, nrow))| {
+        for (i, (p, nrm)) in prow.iter_mut().zip(nrow.iter_mut()).enumerate() {
+            let rest = grid.rest_position(i, j);
+            let s = wave.sample(&frame, rest);
+            *p = Vec3::new(rest.x, 0.0, rest.y) + s.offset;
+            *nrm = s.normal;
+        }
+    });
 }
 
 /// Most fixed-point iterations [`height_by_inversion`] takes.
