@@ -38,7 +38,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let mut renderer = Renderer::new();
     pool.install(|| match output {
         Output::Png => {
-            world.update(a.time);
+            world.update(a.time)?;
             let mut rgba = Vec::new();
             renderer.render(&world).encode_rgba8(exposure, gamma, &mut rgba);
             write_png(&a.out, width, height, &rgba)
@@ -58,7 +58,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
                 frames as usize,
                 delay_cs,
                 |k, rgba| {
-                    world.update(a.time + k as f64 / a.fps);
+                    world.update(a.time + k as f64 / a.fps)?;
                     renderer.render(&world).encode_rgba8(exposure, gamma, rgba);
                     Ok(())
                 },

@@ -1,7 +1,10 @@
-//! Small mathematical building blocks shared by every stage: the regular grid and colour transfer.
+//! Small mathematical building blocks shared by every stage: the regular grid, colour transfer and
+//! seeded gradient noise.
 
 mod color;
 mod grid_spec;
+mod perlin;
 
 pub use color::{linear_to_srgb, srgb_to_linear};
 pub use grid_spec::{GridSpec, MAX_GRID_CELLS};
+pub use perlin::Perlin;

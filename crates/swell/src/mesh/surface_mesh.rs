@@ -21,6 +21,10 @@ pub struct SurfaceMesh {
     pub uvs: Vec<Vec2>,
     /// Triangle list, three vertex indices per triangle.
     pub indices: Vec<u32>,
+    /// Foam coverage in [0, 1] per vertex; all zero unless the model reports foam.
+    pub foam: Vec<f32>,
+    /// Whether the last [`SurfaceMesh::displace`] came with foam from the model.
+    pub has_foam: bool,
 }
 
 impl SurfaceMesh {
@@ -47,12 +51,17 @@ impl SurfaceMesh {
             }
         }
         let normals = vec![Vec3::Y; positions.len()];
-        Self { grid, positions, normals, uvs, indices }
+        let foam = vec![0.0; positions.len()];
+        Self { grid, positions, normals, uvs, indices, foam, has_foam: false }
     }
 
     /// Displaces the mesh with `model` at time `t` (s), in place and without allocating.
+    ///
+    /// Call [`WaveModel::advance`] for `t` first when the model is stateful ([`crate::scene::World`]
+    /// does).
     pub fn displace(&mut self, model: &dyn WaveModel, t: f64) {
         model.evaluate(&self.grid, t, &mut self.positions, &mut self.normals);
+        self.has_foam = model.foam(&self.grid, &mut self.foam);
     }
 }
 

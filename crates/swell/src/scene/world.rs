@@ -38,16 +38,21 @@ impl World {
             None => None,
         };
         let mut world = Self { scene, water, time: f64::NAN };
-        world.update(0.0);
+        world.update(0.0)?;
         Ok(world)
     }
 
     /// Moves every model to time `t` (s) and displaces the meshes.
-    pub fn update(&mut self, t: f64) {
+    ///
+    /// Fails only when a time-stepped model became unstable; the meshes then keep the last good
+    /// frame.
+    pub fn update(&mut self, t: f64) -> Result<()> {
         if let Some(w) = &mut self.water {
+            w.model.advance(t)?;
             w.mesh.displace(w.model.as_ref(), t);
         }
         self.time = t;
+        Ok(())
     }
 
     /// The time of the last [`World::update`], seconds.

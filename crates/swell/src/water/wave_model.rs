@@ -3,6 +3,7 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+use crate::error::Result;
 use crate::math::GridSpec;
 
 /// A water surface model: displaced positions and normals of a grid at time `t`.
@@ -22,6 +23,22 @@ pub trait WaveModel: Send + Sync {
     ///
     /// Models that move water horizontally invert that motion; each model documents its accuracy.
     fn height_at(&self, x: f32, z: f32, t: f64) -> f32;
+
+    /// Moves internal state to time `t` (s) before [`WaveModel::evaluate`] is called for `t`.
+    ///
+    /// Stateless (closed-form) models ignore it, which is the default. Time-stepped models (spring
+    /// mesh) step at their own fixed time step up to `t`; spectral models (FFT ocean) synthesise their
+    /// fields for `t`. An error means the state became unusable (e.g. a blow-up) and nothing was drawn.
+    fn advance(&mut self, _t: f64) -> Result<()> {
+        Ok(())
+    }
+
+    /// Writes foam coverage in [0, 1] for each vertex of `grid` at the time of the last
+    /// [`WaveModel::advance`] and returns true, or returns false (the default) if the model has no
+    /// foam, leaving `out` untouched.
+    fn foam(&self, _grid: &GridSpec, _out: &mut [f32]) -> bool {
+        false
+    }
 }
 
 /// Displacement and normal of the surface point that rests at a given (x, z).
