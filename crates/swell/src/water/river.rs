@@ -1,7 +1,7 @@
 //! A river between two oscillating banks, after paper 004.
 //!
 //! The river runs along +Z. Each bank is a polyline of N vertices (one per grid row); its lateral
-//! position oscillates (paper 004 eqs. 1-2, with r = rate t advancing with time):
+//! position oscillates (paper 004 eqs. 1-2, with r = bank_phase + bank_rate t advancing with time):
 //!
 //! ```text
 //! x_left(z, t)  = sin(r)          A_left  sin(q z) + offset_left        (paper: sin(r) LeftA sin(z) - 2)
@@ -48,6 +48,8 @@ pub struct RiverParams {
     pub right_phase: f32,
     /// Rate at which r advances, rad/s; >= 0. Default 0.5.
     pub bank_rate: f32,
+    /// Value of r at t = 0, radians; finite. Default 0 (paper 004 starts from r = 0).
+    pub bank_phase: f32,
     /// Spatial frequency q of the bank shape along the river, rad/m; >= 0. Default 1 (paper 004's `sin(z)`).
     pub bank_wavenumber: f32,
     /// Downstream (+Z) water speed, m/s; finite. Default 0.8.
@@ -69,6 +71,7 @@ impl Default for RiverParams {
             right_offset: 0.2,
             right_phase: 0.411,
             bank_rate: 0.5,
+            bank_phase: 0.0,
             bank_wavenumber: 1.0,
             flow_speed: 0.8,
             texture_length: 2.0,
@@ -87,6 +90,7 @@ impl RiverParams {
         check_finite_vec(&format!("{key}.right_offset"), &[self.right_offset])?;
         check_finite_vec(&format!("{key}.right_phase"), &[self.right_phase])?;
         check_non_negative(&format!("{key}.bank_rate"), self.bank_rate)?;
+        check_finite_vec(&format!("{key}.bank_phase"), &[self.bank_phase])?;
         check_non_negative(&format!("{key}.bank_wavenumber"), self.bank_wavenumber)?;
         check_finite_vec(&format!("{key}.flow_speed"), &[self.flow_speed])?;
         check_positive(&format!("{key}.texture_length"), self.texture_length)?;
@@ -145,7 +149,7 @@ impl River {
 
     fn frame(&self, t: f64) -> Frame {
         let p = &self.params;
-        let r = (f64::from(p.bank_rate) * t).rem_euclid(std::f64::consts::TAU);
+        let r = (f64::from(p.bank_phase) + f64::from(p.bank_rate) * t).rem_euclid(std::f64::consts::TAU);
         let k = f64::from(TAU / p.ripple_wavelength);
         Frame {
             left_swing: r.sin() as f32,
