@@ -16,6 +16,9 @@
 //! dominates long before that. Outside |x| <= 4e6 the result is wrong; wave phases are reduced modulo
 //! 2 pi per frame, so per-vertex arguments stay far below that.
 
+// The constants are written as published (Cephes), digits beyond f32 included, so they can be checked.
+#![allow(clippy::excessive_precision)]
+
 /// Largest absolute error of [`fast_sin_cos`] for |x| <= 1e4 rad.
 pub const FAST_SIN_COS_MAX_ERROR: f32 = 6e-7;
 

@@ -34,11 +34,12 @@ pub const WATER_DENSITY: f32 = 1000.0;
 ///
 /// In a scene file: `dispersion = { type = "deep" }`, `{ type = "finite-depth", depth = 10.0 }` or
 /// `{ type = "capillary", depth = 100.0 }`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Dispersion {
     /// Deep water, `w^2 = g k`: valid when the depth exceeds about half a wavelength and the waves
-    /// are longer than a few centimetres.
+    /// are longer than a few centimetres. The default.
+    #[default]
     Deep,
     /// Water of finite depth, `w^2 = g k tanh(k D)` (shallow water, paper 003 eq. 8).
     FiniteDepth {
@@ -51,12 +52,6 @@ pub enum Dispersion {
         /// Water depth D in metres, > 0 (use a large value such as 100 for deep water).
         depth: f32,
     },
-}
-
-impl Default for Dispersion {
-    fn default() -> Self {
-        Dispersion::Deep
-    }
 }
 
 impl Dispersion {

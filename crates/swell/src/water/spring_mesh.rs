@@ -427,7 +427,7 @@ impl SpringMesh {
                     *x = positions[k] + velocities[k] * dt;
                     let r = lattice.rest_position(i, j);
                     let moved = (*x - Vec3::new(r.x, 0.0, r.y)).length();
-                    if !(moved <= limit) && bad.is_none() {
+                    if (moved.is_nan() || moved > limit) && bad.is_none() {
                         bad = Some(k);
                     }
                 }
