@@ -340,4 +340,29 @@ mod tests {
         };
         assert_eq!(run(1), run(2));
     }
+
+    #[test]
+    fn the_wave_list_is_edited_one_wave_at_a_time_and_revalidated() {
+        let mut g = Gerstner::new(Vec::new()).unwrap();
+        assert_eq!(g.add_wave(wave(0.5, 20.0, 0.6, Vec2::X)).unwrap(), 0);
+        assert_eq!(g.add_wave(wave(0.2, 8.0, 0.6, Vec2::Y)).unwrap(), 1);
+        // With two waves the artist mapping halves each horizontal radius: Q / (k N).
+        let s = g.sample(&g.frame(0.0), Vec2::ZERO);
+        assert!((s.offset.x - 0.6 / (TAU / 20.0 * 2.0)).abs() < 1e-5, "{}", s.offset.x);
+        g.set_wave(1, wave(0.3, 9.0, 0.6, Vec2::new(1.0, 1.0))).unwrap();
+        assert_eq!(g.waves()[1].wavelength, 9.0);
+        // Invalid edits are refused with the key, and leave the model as it was.
+        let before = g.waves().to_vec();
+        let e = g.set_wave(0, wave(0.3, 9.0, 1.5, Vec2::X)).unwrap_err();
+        assert_eq!(e.to_string(), "water.waves[0].steepness = 1.5 is outside [0, 1]");
+        let e = g.remove_wave(5).unwrap_err();
+        assert_eq!(e.to_string(), "water.waves index = 5 is outside [0, 1]");
+        assert_eq!(g.waves(), &before[..]);
+        assert_eq!(g.remove_wave(0).unwrap(), before[0]);
+        assert_eq!(g.waves(), &before[1..]);
+        g.clear();
+        assert!(g.waves().is_empty());
+        assert_eq!(g.height_at(1.0, 2.0, 3.0), 0.0);
+        assert!(g.remove_wave(0).unwrap_err().to_string().contains("empty"));
+    }
 }
