@@ -15,11 +15,78 @@ pub struct Preset {
 }
 
 /// Every preset, in the order `swell presets` lists them.
-pub const PRESETS: &[Preset] = &[Preset {
-    name: "sea",
-    description: "open sea: 10 Gerstner waves from a westerly wind under a clear sky",
-    toml: include_str!("../../presets/sea.toml"),
-}];
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "sea",
+        description: "open sea: 10 Gerstner waves from a westerly wind under a clear sky",
+        toml: include_str!("../../presets/sea.toml"),
+    },
+    Preset {
+        name: "lake",
+        description: "lake: 6 Gerstner waves generated from a light breeze (wave-set)",
+        toml: include_str!("../../presets/lake.toml"),
+    },
+    Preset {
+        name: "tessendorf",
+        description: "ocean swell: 8 Gerstner waves in Tessendorf's form, finite-depth dispersion, loops every 60 s",
+        toml: include_str!("../../presets/tessendorf.toml"),
+    },
+    Preset {
+        name: "airy",
+        description: "pond ripples: 6 linear waves with capillary-gravity dispersion",
+        toml: include_str!("../../presets/airy.toml"),
+    },
+    Preset {
+        name: "steep-sines",
+        description: "paper 003's steep sum of sines A ((sin S + 1) / 2)^k",
+        toml: include_str!("../../presets/steep-sines.toml"),
+    },
+    Preset {
+        name: "pool",
+        description: "paper 002's pool: a radial sine wave over [-1, 1]^2 seen through a 20 degree lens",
+        toml: include_str!("../../presets/pool.toml"),
+    },
+    Preset {
+        name: "noise",
+        description: "drifting Perlin-noise water (5 octaves)",
+        toml: include_str!("../../presets/noise.toml"),
+    },
+    Preset {
+        name: "springs",
+        description: "Hooke spring lattice with drops falling every 4 s",
+        toml: include_str!("../../presets/springs.toml"),
+    },
+    Preset {
+        name: "river",
+        description: "paper 004's river between two oscillating banks",
+        toml: include_str!("../../presets/river.toml"),
+    },
+    Preset {
+        name: "paper-000-fig-4-1",
+        description: "paper 000 figure 4.1: main wave along (1,1) plus waves along (1,0) and (0,1)",
+        toml: include_str!("../../presets/paper-000-fig-4-1.toml"),
+    },
+    Preset {
+        name: "paper-000-fig-4-2",
+        description: "paper 000 figure 4.2: a single long, gentle wave along (1,1)",
+        toml: include_str!("../../presets/paper-000-fig-4-2.toml"),
+    },
+    Preset {
+        name: "paper-000-fig-4-3",
+        description: "paper 000 figure 4.3: steep main wave plus waves along (1,0) and (-1,2)",
+        toml: include_str!("../../presets/paper-000-fig-4-3.toml"),
+    },
+    Preset {
+        name: "paper-000-fig-4-4",
+        description: "paper 000 figure 4.4: main wave plus four waves fanned around (1,1)",
+        toml: include_str!("../../presets/paper-000-fig-4-4.toml"),
+    },
+    Preset {
+        name: "paper-000-fig-4-5",
+        description: "paper 000 figure 4.5: main wave plus nine waves of various lengths and directions",
+        toml: include_str!("../../presets/paper-000-fig-4-5.toml"),
+    },
+];
 
 /// The scene of preset `name`, parsed and validated.
 pub fn preset(name: &str) -> Result<Scene> {

@@ -22,6 +22,10 @@ use serde::{de::DeserializeOwned, Deserialize, Serialize};
 use crate::error::{check_finite_vec, check_range, Error, Result};
 use crate::math::GridSpec;
 use crate::shading::Shading;
+use crate::water::{
+    wave_set, Airy, AiryParams, GerstnerTessendorf, NoiseParams, NoiseWaves, RadialWave, RadialWaveParams, River,
+    RiverParams, SpringMesh, SpringMeshParams, SteepSines, SteepSinesParams, TessendorfParams, WaveSetParams,
+};
 use crate::water::{Gerstner, GerstnerWave, SineWave, SumOfSines, WaveModel};
 
 /// The water patch and its sampling grid.
@@ -110,10 +114,27 @@ pub enum WaterModelSpec {
     Gerstner(GerstnerSpec),
     /// `model = "sines"`.
     Sines(SinesSpec),
+    /// `model = "tessendorf"`: Gerstner waves in Tessendorf's form with dispersion (paper 003).
+    Tessendorf(TessendorfParams),
+    /// `model = "wave-set"`: Gerstner waves generated from wind, spread and medians (paper 000 §2.4).
+    WaveSet(WaveSetParams),
+    /// `model = "airy"`: linear sum of sines with dispersion (paper 000 eqs. 2-3).
+    Airy(AiryParams),
+    /// `model = "steep-sines"`: paper 003's `A ((sin S + 1) / 2)^k`.
+    SteepSines(SteepSinesParams),
+    /// `model = "radial"`: paper 002's circular wave.
+    Radial(RadialWaveParams),
+    /// `model = "noise"`: drifting Perlin fBm (paper 003 §1.1.1).
+    Noise(NoiseParams),
+    /// `model = "springs"`: Hooke spring lattice (paper 003 §1.1.3).
+    Springs(SpringMeshParams),
+    /// `model = "river"`: paper 004's river between oscillating banks.
+    River(RiverParams),
 }
 
 /// The names `water.model` accepts.
-pub const WATER_MODELS: &[&str] = &["gerstner", "sines"];
+pub const WATER_MODELS: &[&str] =
+    &["gerstner", "sines", "tessendorf", "wave-set", "airy", "steep-sines", "radial", "noise", "springs", "river"];
 
 impl WaterModelSpec {
     /// Builds the model, validating its parameters.
@@ -121,6 +142,14 @@ impl WaterModelSpec {
         Ok(match self {
             WaterModelSpec::Gerstner(s) => Box::new(Gerstner::new(s.waves.clone())?),
             WaterModelSpec::Sines(s) => Box::new(SumOfSines::new(s.waves.clone())?),
+            WaterModelSpec::Tessendorf(p) => Box::new(GerstnerTessendorf::new(p.clone())?),
+            WaterModelSpec::WaveSet(p) => Box::new(Gerstner::new(wave_set(p)?)?),
+            WaterModelSpec::Airy(p) => Box::new(Airy::new(p.clone())?),
+            WaterModelSpec::SteepSines(p) => Box::new(SteepSines::new(p.clone())?),
+            WaterModelSpec::Radial(p) => Box::new(RadialWave::new(*p)?),
+            WaterModelSpec::Noise(p) => Box::new(NoiseWaves::new(*p)?),
+            WaterModelSpec::Springs(p) => Box::new(SpringMesh::new(*p)?),
+            WaterModelSpec::River(p) => Box::new(River::new(*p)?),
         })
     }
 
@@ -128,6 +157,14 @@ impl WaterModelSpec {
         Ok(match model {
             "gerstner" => WaterModelSpec::Gerstner(deserialize_at(rest, "water", source)?),
             "sines" => WaterModelSpec::Sines(deserialize_at(rest, "water", source)?),
+            "tessendorf" => WaterModelSpec::Tessendorf(deserialize_at(rest, "water", source)?),
+            "wave-set" => WaterModelSpec::WaveSet(deserialize_at(rest, "water", source)?),
+            "airy" => WaterModelSpec::Airy(deserialize_at(rest, "water", source)?),
+            "steep-sines" => WaterModelSpec::SteepSines(deserialize_at(rest, "water", source)?),
+            "radial" => WaterModelSpec::Radial(deserialize_at(rest, "water", source)?),
+            "noise" => WaterModelSpec::Noise(deserialize_at(rest, "water", source)?),
+            "springs" => WaterModelSpec::Springs(deserialize_at(rest, "water", source)?),
+            "river" => WaterModelSpec::River(deserialize_at(rest, "water", source)?),
             other => {
                 return Err(Error::Parse {
                     path: source.to_string(),
@@ -255,5 +292,29 @@ mod tests {
         assert!(e.to_string().contains("gerstner, sines"), "{e}");
         let e = parse("model = 'sines'\ncells = [0, 4]\n").unwrap();
         assert_eq!(e.validate().unwrap_err().to_string(), "water.cells[0] = 0 is outside [1, 4096]");
+    }
+
+    #[test]
+    fn every_model_parses_with_its_defaults_builds_and_round_trips() {
+        for name in WATER_MODELS {
+            let w = parse(&format!("model = '{name}'\n")).unwrap_or_else(|e| panic!("{name}: {e}"));
+            w.model.build().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(WaterSpec::from_table(w.to_table(), "again").unwrap(), w, "{name}");
+        }
+        let w = parse(
+            "model = 'tessendorf'\nloop_period = 30.0\ndispersion = { type = 'finite-depth', depth = 4.0 }\n\
+             [[waves]]\namplitude = 0.5\nwavelength = 20.0\ndirection = [1.0, 0.0]\n",
+        )
+        .unwrap();
+        assert_eq!(WaterSpec::from_table(w.to_table(), "again").unwrap(), w);
+        let w = parse("model = 'springs'\ncenter = [0.0, 0.0]\nedges = 'free'\ndrops = { interval = 2.0, radius = 1.0, depth = 0.1 }\n")
+            .unwrap();
+        assert_eq!(WaterSpec::from_table(w.to_table(), "again").unwrap(), w);
+        let e = parse("model = 'springs'\ntime_step = 2.0\n").unwrap().model.build().err().unwrap();
+        assert!(e.to_string().starts_with("water.time_step = 2 is outside (0, 0.53"), "{e}");
+        let e = parse("model = 'radial'\nwave_center = [1.0]\n").unwrap_err();
+        assert!(e.to_string().contains("water.wave_center"), "{e}");
+        let e = parse("model = 'tessendorf'\ndispersion = { type = 'shallow' }\n").unwrap_err();
+        assert!(e.to_string().contains("water.dispersion"), "{e}");
     }
 }

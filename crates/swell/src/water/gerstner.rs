@@ -23,13 +23,14 @@ use std::f32::consts::TAU;
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::wave_model::{evaluate_pointwise, height_by_inversion, PointWave, SurfacePoint, WaveModel};
+use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
+use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
 use crate::error::{check_non_negative, check_positive, check_range, Error, Result};
 use crate::math::GridSpec;
 
 /// Most waves one [`Gerstner`] model sums (paper 000 uses up to 12; 64 leaves room for rich seas
 /// while keeping per-frame phases on the stack).
-pub const MAX_GERSTNER_WAVES: usize = 64;
+pub const MAX_GERSTNER_WAVES: usize = MAX_TROCHOIDAL_WAVES;
 
 /// One Gerstner wave as the user describes it (paper 000 §2.2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -70,28 +71,26 @@ impl GerstnerWave {
     }
 }
 
-/// Per-wave constants derived once in [`Gerstner::new`].
-#[derive(Clone, Copy, Debug)]
-struct Prepared {
-    /// Wave vector w D (rad/m).
-    k: Vec2,
-    /// Angular frequency phi = S w (rad/s).
-    omega: f64,
-    amplitude: f32,
-    /// Horizontal orbit radius Q_i A_i (m).
-    horizontal: f32,
-}
-
 /// A sum of Gerstner waves (paper 000); evaluates analytically with exact normals.
+///
+/// The wave list can be edited one wave at a time ([`Gerstner::add_wave`], [`Gerstner::set_wave`],
+/// [`Gerstner::remove_wave`], [`Gerstner::clear`]), as paper 000's GUI does; every edit re-validates
+/// and re-derives the per-wave constants (the artist steepness mapping depends on the wave count).
 #[derive(Clone, Debug)]
 pub struct Gerstner {
     waves: Vec<GerstnerWave>,
-    prepared: Vec<Prepared>,
+    sum: TrochoidalSum,
 }
 
 impl Gerstner {
     /// Builds the model from its waves, refusing invalid ones (0 to [`MAX_GERSTNER_WAVES`] waves).
     pub fn new(waves: Vec<GerstnerWave>) -> Result<Self> {
+        Self::check(&waves)?;
+        let sum = Self::prepare(&waves);
+        Ok(Self { waves, sum })
+    }
+
+    fn check(waves: &[GerstnerWave]) -> Result<()> {
         if waves.len() > MAX_GERSTNER_WAVES {
             return Err(Error::out_of_range(
                 "water.waves",
@@ -102,23 +101,80 @@ impl Gerstner {
         for (i, w) in waves.iter().enumerate() {
             w.validate(&format!("water.waves[{i}]"))?;
         }
+        Ok(())
+    }
+
+    fn prepare(waves: &[GerstnerWave]) -> TrochoidalSum {
         let n = waves.len() as f32;
-        let prepared = waves
-            .iter()
-            .map(|w| {
-                let k = w.wavenumber();
-                // Q_i A_i = Q / (w_i N): the A_i cancels, so write it without dividing by A_i. A
-                // wave of zero amplitude contributes nothing, horizontally included.
-                let horizontal = if w.amplitude > 0.0 { w.steepness / (k * n) } else { 0.0 };
-                Prepared {
-                    k: w.direction.normalize() * k,
-                    omega: f64::from(w.speed) * f64::from(k),
-                    amplitude: w.amplitude,
-                    horizontal,
-                }
-            })
-            .collect();
-        Ok(Self { waves, prepared })
+        TrochoidalSum::new(
+            waves
+                .iter()
+                .map(|w| {
+                    let k = w.wavenumber();
+                    // Q_i A_i = Q / (w_i N): the A_i cancels, so write it without dividing by A_i. A
+                    // wave of zero amplitude contributes nothing, horizontally included.
+                    let horizontal = if w.amplitude > 0.0 { w.steepness / (k * n) } else { 0.0 };
+                    Trochoid {
+                        k: w.direction.normalize() * k,
+                        omega: f64::from(w.speed) * f64::from(k),
+                        phase: 0.0,
+                        amplitude: w.amplitude,
+                        horizontal,
+                    }
+                })
+                .collect(),
+        )
+    }
+
+    /// Replaces the whole list, validating it first (the model is unchanged on error).
+    pub fn set_waves(&mut self, waves: Vec<GerstnerWave>) -> Result<()> {
+        *self = Self::new(waves)?;
+        Ok(())
+    }
+
+    /// Appends a wave and returns its index; refused (model unchanged) if the wave is invalid or the
+    /// list already holds [`MAX_GERSTNER_WAVES`].
+    pub fn add_wave(&mut self, wave: GerstnerWave) -> Result<usize> {
+        let mut waves = self.waves.clone();
+        waves.push(wave);
+        self.set_waves(waves)?;
+        Ok(self.waves.len() - 1)
+    }
+
+    /// Replaces wave `index`; refused (model unchanged) if the index or the wave is invalid.
+    pub fn set_wave(&mut self, index: usize, wave: GerstnerWave) -> Result<()> {
+        self.check_index(index)?;
+        let mut waves = self.waves.clone();
+        waves[index] = wave;
+        self.set_waves(waves)
+    }
+
+    /// Removes and returns wave `index` (later waves move down by one).
+    pub fn remove_wave(&mut self, index: usize) -> Result<GerstnerWave> {
+        self.check_index(index)?;
+        let mut waves = self.waves.clone();
+        let removed = waves.remove(index);
+        self.set_waves(waves)?;
+        Ok(removed)
+    }
+
+    /// Removes every wave: the surface becomes the plane at rest.
+    pub fn clear(&mut self) {
+        self.waves.clear();
+        self.sum = Self::prepare(&self.waves);
+    }
+
+    fn check_index(&self, index: usize) -> Result<()> {
+        if index < self.waves.len() {
+            Ok(())
+        } else {
+            let range = if self.waves.is_empty() {
+                "none (the list is empty)".to_string()
+            } else {
+                format!("[0, {}]", self.waves.len() - 1)
+            };
+            Err(Error::out_of_range("water.waves index", index, range))
+        }
     }
 
     /// The waves, as given.
@@ -128,47 +184,20 @@ impl Gerstner {
 }
 
 impl PointWave for Gerstner {
-    type Frame = [f32; MAX_GERSTNER_WAVES];
+    type Frame = Phases;
 
     fn frame(&self, t: f64) -> Self::Frame {
-        let mut phase = [0.0; MAX_GERSTNER_WAVES];
-        for (p, w) in phase.iter_mut().zip(&self.prepared) {
-            *p = (w.omega * t).rem_euclid(std::f64::consts::TAU) as f32;
-        }
-        phase
+        self.sum.phases(t)
     }
 
     fn sample(&self, frame: &Self::Frame, rest: Vec2) -> SurfacePoint {
-        let mut offset = Vec3::ZERO;
-        // Partial derivatives of the displaced point P(x0, z0), accumulated wave by wave, so the
-        // normal is the exact cross product rather than GPU Gems' approximation (which drops the
-        // cross terms between waves of different directions).
-        let (mut sxx, mut sxz, mut szz, mut cx, mut cz) = (0.0f32, 0.0f32, 0.0f32, 0.0f32, 0.0f32);
-        for (w, &phase_t) in self.prepared.iter().zip(frame.iter()) {
-            let theta = w.k.dot(rest) - phase_t;
-            let (s, c) = theta.sin_cos();
-            let dir = w.k.normalize_or_zero();
-            offset.x += w.horizontal * dir.x * c;
-            offset.z += w.horizontal * dir.y * c;
-            offset.y += w.amplitude * s;
-            // d(horizontal term)/d(rest) = -Q_i A_i * k_a * D_b * sin; d(height)/d(rest) = A k_a cos.
-            let qs = w.horizontal * s;
-            sxx += qs * w.k.x * dir.x;
-            sxz += qs * w.k.x * dir.y;
-            szz += qs * w.k.y * dir.y;
-            cx += w.amplitude * w.k.x * c;
-            cz += w.amplitude * w.k.y * c;
-        }
-        let tangent_x = Vec3::new(1.0 - sxx, cx, -sxz);
-        let tangent_z = Vec3::new(-sxz, cz, 1.0 - szz);
-        let normal = tangent_z.cross(tangent_x).normalize_or(Vec3::Y);
-        SurfacePoint { offset, normal }
+        self.sum.sample(frame, rest)
     }
 }
 
 impl WaveModel for Gerstner {
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
-        evaluate_pointwise(self, grid, t, positions, normals);
+        self.sum.evaluate(grid, t, positions, normals);
     }
 
     /// Inverts the horizontal motion (see [`height_by_inversion`]): within 1e-4 m of the evaluated
@@ -310,5 +339,30 @@ mod tests {
             (p, n)
         };
         assert_eq!(run(1), run(2));
+    }
+
+    #[test]
+    fn the_wave_list_is_edited_one_wave_at_a_time_and_revalidated() {
+        let mut g = Gerstner::new(Vec::new()).unwrap();
+        assert_eq!(g.add_wave(wave(0.5, 20.0, 0.6, Vec2::X)).unwrap(), 0);
+        assert_eq!(g.add_wave(wave(0.2, 8.0, 0.6, Vec2::Y)).unwrap(), 1);
+        // With two waves the artist mapping halves each horizontal radius: Q / (k N).
+        let s = g.sample(&g.frame(0.0), Vec2::ZERO);
+        assert!((s.offset.x - 0.6 / (TAU / 20.0 * 2.0)).abs() < 1e-5, "{}", s.offset.x);
+        g.set_wave(1, wave(0.3, 9.0, 0.6, Vec2::new(1.0, 1.0))).unwrap();
+        assert_eq!(g.waves()[1].wavelength, 9.0);
+        // Invalid edits are refused with the key, and leave the model as it was.
+        let before = g.waves().to_vec();
+        let e = g.set_wave(0, wave(0.3, 9.0, 1.5, Vec2::X)).unwrap_err();
+        assert_eq!(e.to_string(), "water.waves[0].steepness = 1.5 is outside [0, 1]");
+        let e = g.remove_wave(5).unwrap_err();
+        assert_eq!(e.to_string(), "water.waves index = 5 is outside [0, 1]");
+        assert_eq!(g.waves(), &before[..]);
+        assert_eq!(g.remove_wave(0).unwrap(), before[0]);
+        assert_eq!(g.waves(), &before[1..]);
+        g.clear();
+        assert!(g.waves().is_empty());
+        assert_eq!(g.height_at(1.0, 2.0, 3.0), 0.0);
+        assert!(g.remove_wave(0).unwrap_err().to_string().contains("empty"));
     }
 }

@@ -5,10 +5,27 @@
 //! Analytic models (those with a closed form per point) implement [`PointWave`] and get parallel grid
 //! evaluation and the height query from [`evaluate_pointwise`] and [`height_by_inversion`].
 
+mod airy;
 mod gerstner;
+mod gerstner_tessendorf;
+mod noise_waves;
+mod radial_wave;
+mod river;
+mod spring_mesh;
+mod steep_sines;
 mod sum_of_sines;
+mod trochoidal_sum;
 mod wave_model;
+mod wave_set;
 
+pub use airy::{Airy, AiryParams, AiryWave, MAX_AIRY_WAVES};
 pub use gerstner::{Gerstner, GerstnerWave, MAX_GERSTNER_WAVES};
+pub use gerstner_tessendorf::{GerstnerTessendorf, TessendorfParams, TessendorfWave, MAX_TESSENDORF_WAVES};
+pub use noise_waves::{NoiseFrame, NoiseParams, NoiseWaves, MAX_NOISE_OCTAVES};
+pub use radial_wave::{RadialWave, RadialWaveParams};
+pub use river::{River, RiverParams};
+pub use spring_mesh::{DropSchedule, Edges, SpringMesh, SpringMeshParams, MAX_SPRING_CELLS, MAX_STEPS_PER_ADVANCE};
+pub use steep_sines::{SteepSineWave, SteepSines, SteepSinesParams, MAX_STEEP_SINE_EXPONENT, MAX_STEEP_SINE_WAVES};
 pub use sum_of_sines::{SineWave, SumOfSines, MAX_SINE_WAVES};
 pub use wave_model::{evaluate_pointwise, height_by_inversion, PointWave, SurfacePoint, WaveModel};
+pub use wave_set::{wave_set, WaveSetParams};

@@ -1,0 +1,249 @@
+//! The evaluation shared by both Gerstner forms: a sum of trochoidal waves
+//!
+//! ```text
+//! theta_i = k_i . r - w_i t + phi_i
+//! P(r, t) = (r.x + sum H_i D_i.x cos theta_i,   sum A_i sin theta_i,   r.z + sum H_i D_i.z cos theta_i)
+//! ```
+//!
+//! with wave vector k_i, unit direction D_i = k_i / |k_i|, amplitude A_i and horizontal orbit radius
+//! H_i. The GPU Gems form (paper 000) has `phi_i = 0`, `H_i = Q_i A_i`; Tessendorf's form (paper 003
+//! eq. 11, `x = x0 - sum D A sin(theta')`, `y = sum A cos(theta')`) is the same sum with
+//! `theta = theta' + pi/2` and `H_i = A_i`. Normals are the cross product of the exact partial
+//! derivatives, not GPU Gems' approximation (which drops the cross terms between waves of different
+//! directions).
+//!
+//! The grid path is the hot loop of every Gerstner scene: rows go to rayon tasks, each row is
+//! processed in blocks of [`BLOCK`] vertices with the waves in the outer loop and
+//! [`fast_sin_cos`] in the inner loop, so the inner loop is branch-free arithmetic over arrays that
+//! the compiler vectorises.
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use super::wave_model::SurfacePoint;
+use crate::math::{fast_sin_cos, GridSpec};
+
+/// Most waves one sum holds; per-frame phases live on the stack in an array of this size.
+pub const MAX_TROCHOIDAL_WAVES: usize = 64;
+
+/// Vertices per block of the grid path: 8 accumulators of 64 f32 stay in L1.
+const BLOCK: usize = 64;
+
+/// One prepared wave: everything the inner loop needs, premultiplied.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Trochoid {
+    /// Wave vector (rad/m).
+    pub k: Vec2,
+    /// Angular frequency (rad/s).
+    pub omega: f64,
+    /// Constant phase phi (rad).
+    pub phase: f64,
+    /// Vertical amplitude A (m).
+    pub amplitude: f32,
+    /// Horizontal orbit radius H (m).
+    pub horizontal: f32,
+}
+
+/// Per-wave coefficients of the inner loop (derived from a [`Trochoid`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct Coefficients {
+    kx: f32,
+    kz: f32,
+    a: f32,
+    /// H D.x and H D.z: horizontal offset per unit cos theta.
+    hx: f32,
+    hz: f32,
+    /// A k.x and A k.z: height slope per unit cos theta.
+    akx: f32,
+    akz: f32,
+    /// H k.x D.x, H k.x D.z (= H k.z D.x), H k.z D.z: horizontal Jacobian per unit sin theta.
+    sxx: f32,
+    sxz: f32,
+    szz: f32,
+}
+
+/// A prepared sum of trochoidal waves.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TrochoidalSum {
+    waves: Vec<Trochoid>,
+    coefficients: Vec<Coefficients>,
+}
+
+/// Per-frame phases `(w_i t - phi_i) mod 2 pi`, computed in f64.
+pub(crate) type Phases = [f32; MAX_TROCHOIDAL_WAVES];
+
+impl TrochoidalSum {
+    /// Prepares `waves` (at most [`MAX_TROCHOIDAL_WAVES`]; the callers check).
+    pub fn new(waves: Vec<Trochoid>) -> Self {
+        debug_assert!(waves.len() <= MAX_TROCHOIDAL_WAVES);
+        let coefficients = waves
+            .iter()
+            .map(|w| {
+                let d = w.k.normalize_or_zero();
+                Coefficients {
+                    kx: w.k.x,
+                    kz: w.k.y,
+                    a: w.amplitude,
+                    hx: w.horizontal * d.x,
+                    hz: w.horizontal * d.y,
+                    akx: w.amplitude * w.k.x,
+                    akz: w.amplitude * w.k.y,
+                    sxx: w.horizontal * w.k.x * d.x,
+                    sxz: w.horizontal * w.k.x * d.y,
+                    szz: w.horizontal * w.k.y * d.y,
+                }
+            })
+            .collect();
+        Self { waves, coefficients }
+    }
+
+    /// The phases subtracted from `k . r` at time `t` (s).
+    pub fn phases(&self, t: f64) -> Phases {
+        let mut out = [0.0; MAX_TROCHOIDAL_WAVES];
+        for (p, w) in out.iter_mut().zip(&self.waves) {
+            *p = (w.omega * t - w.phase).rem_euclid(std::f64::consts::TAU) as f32;
+        }
+        out
+    }
+
+    /// Displacement and normal of the point resting at `rest`.
+    pub fn sample(&self, phases: &Phases, rest: Vec2) -> SurfacePoint {
+        let mut acc = [0.0f32; 8];
+        for (c, &ph) in self.coefficients.iter().zip(phases.iter()) {
+            let (s, co) = fast_sin_cos(c.kx * rest.x + (c.kz * rest.y - ph));
+            accumulate(&mut acc, c, s, co);
+        }
+        finish(rest, &acc)
+    }
+
+    /// Writes positions and normals of every vertex of `grid` at time `t` (s); rows in parallel.
+    pub fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
+        let n = grid.vertex_count();
+        assert!(positions.len() == n && normals.len() == n, "buffers must hold grid.vertex_count() = {n} vertices");
+        let phases = self.phases(t);
+        let row = grid.verts_x();
+        positions.par_chunks_mut(row).zip(normals.par_chunks_mut(row)).enumerate().for_each(|(j, (prow, nrow))| {
+            let z = grid.rest_position(0, j).y;
+            self.evaluate_row(grid, j, z, &phases, prow, nrow);
+        });
+    }
+
+    /// One row, with the widest vector instructions this CPU has. The AVX2 and baseline builds of
+    /// the same code give bit-identical results: Rust never fuses a multiply and an add on its own,
+    /// and every lane does the same IEEE operations in the same order.
+    fn evaluate_row(&self, grid: &GridSpec, j: usize, z: f32, phases: &Phases, prow: &mut [Vec3], nrow: &mut [Vec3]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2, checked just above.
+            unsafe { self.evaluate_row_avx2(grid, j, z, phases, prow, nrow) };
+            return;
+        }
+        self.evaluate_row_generic(grid, j, z, phases, prow, nrow);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn evaluate_row_avx2(
+        &self,
+        grid: &GridSpec,
+        j: usize,
+        z: f32,
+        phases: &Phases,
+        prow: &mut [Vec3],
+        nrow: &mut [Vec3],
+    ) {
+        self.evaluate_row_generic(grid, j, z, phases, prow, nrow);
+    }
+
+    #[inline(always)]
+    fn evaluate_row_generic(
+        &self,
+        grid: &GridSpec,
+        j: usize,
+        z: f32,
+        phases: &Phases,
+        prow: &mut [Vec3],
+        nrow: &mut [Vec3],
+    ) {
+        let row = prow.len();
+        for start in (0..row).step_by(BLOCK) {
+            let len = BLOCK.min(row - start);
+            self.evaluate_block(
+                grid,
+                start,
+                j,
+                z,
+                phases,
+                &mut prow[start..start + len],
+                &mut nrow[start..start + len],
+            );
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn evaluate_block(
+        &self,
+        grid: &GridSpec,
+        start: usize,
+        j: usize,
+        z: f32,
+        phases: &Phases,
+        positions: &mut [Vec3],
+        normals: &mut [Vec3],
+    ) {
+        let xs: [f32; BLOCK] = std::array::from_fn(|i| grid.rest_position(start + i, j).x);
+        let mut ox = [0.0f32; BLOCK];
+        let mut oy = [0.0f32; BLOCK];
+        let mut oz = [0.0f32; BLOCK];
+        let mut sxx = [0.0f32; BLOCK];
+        let mut sxz = [0.0f32; BLOCK];
+        let mut szz = [0.0f32; BLOCK];
+        let mut cx = [0.0f32; BLOCK];
+        let mut cz = [0.0f32; BLOCK];
+        for (c, &ph) in self.coefficients.iter().zip(phases.iter()) {
+            // The same expression as `sample`, so the grid and the point query agree to the bit.
+            let row_phase = c.kz * z - ph;
+            for i in 0..BLOCK {
+                let (s, co) = fast_sin_cos(c.kx * xs[i] + row_phase);
+                ox[i] += c.hx * co;
+                oz[i] += c.hz * co;
+                oy[i] += c.a * s;
+                sxx[i] += c.sxx * s;
+                sxz[i] += c.sxz * s;
+                szz[i] += c.szz * s;
+                cx[i] += c.akx * co;
+                cz[i] += c.akz * co;
+            }
+        }
+        for (i, (p, nrm)) in positions.iter_mut().zip(normals.iter_mut()).enumerate() {
+            let sp = finish(Vec2::new(xs[i], z), &[ox[i], oy[i], oz[i], sxx[i], sxz[i], szz[i], cx[i], cz[i]]);
+            *p = Vec3::new(xs[i], 0.0, z) + sp.offset;
+            *nrm = sp.normal;
+        }
+    }
+}
+
+/// Adds one wave's terms to the accumulators `[ox, oy, oz, sxx, sxz, szz, cx, cz]`.
+#[inline(always)]
+fn accumulate(acc: &mut [f32; 8], c: &Coefficients, s: f32, co: f32) {
+    acc[0] += c.hx * co;
+    acc[1] += c.a * s;
+    acc[2] += c.hz * co;
+    acc[3] += c.sxx * s;
+    acc[4] += c.sxz * s;
+    acc[5] += c.szz * s;
+    acc[6] += c.akx * co;
+    acc[7] += c.akz * co;
+}
+
+/// Turns the accumulated sums into the displacement and the exact unit normal.
+#[inline(always)]
+fn finish(_rest: Vec2, acc: &[f32; 8]) -> SurfacePoint {
+    let [ox, oy, oz, sxx, sxz, szz, cx, cz] = *acc;
+    // dP/dx0 and dP/dz0: d(H D cos)/dr = -H D k sin, d(A sin)/dr = A k cos.
+    let tangent_x = Vec3::new(1.0 - sxx, cx, -sxz);
+    let tangent_z = Vec3::new(-sxz, cz, 1.0 - szz);
+    let normal = tangent_z.cross(tangent_x).normalize_or(Vec3::Y);
+    SurfacePoint { offset: Vec3::new(ox, oy, oz), normal }
+}
