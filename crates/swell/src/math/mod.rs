@@ -4,7 +4,9 @@
 mod color;
 mod grid_spec;
 mod perlin;
+mod transform;
 
 pub use color::{linear_to_srgb, srgb_to_linear};
 pub use grid_spec::{GridSpec, MAX_GRID_CELLS};
 pub use perlin::Perlin;
+pub use transform::{Transform, MAX_SCALE};
