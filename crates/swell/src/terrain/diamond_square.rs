@@ -12,7 +12,7 @@
 //!   (the paper's "ignore points outside the map" option). Set low corners for the paper's look;
 //! - an optional `center` fixes the first diamond value, which makes valleys (low centre) and
 //!   mountains (high centre) on demand;
-//! - each offset comes from a hash of (seed, level, x, y) ([`lattice_random`]) rather than from a
+//! - each offset comes from a hash of (seed, level, x, y) ([`super::lattice_random`]) rather than from a
 //!   sequential generator, so a level's points are independent and computed in parallel with a
 //!   result that is bit-identical on any number of threads.
 
@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::height_field::{square_field, HeightField, MAX_TERRAIN_SIZE};
-use super::lattice_random::lattice_random;
+use super::lattice_random::LatticeRandom;
 use super::smoothing::{smooth, MAX_SMOOTHING_PASSES};
 use crate::error::{check_count, check_finite_vec, check_non_negative, check_range, Error, Result};
 
@@ -116,127 +116,112 @@ pub fn diamond_square(size: u32, extent: Vec2, p: &DiamondSquareParams) -> Resul
     h[cells] = p.corners[1];
     h[cells * n] = p.corners[2];
     h[cells * n + cells] = p.corners[3];
-    // New values of one step, a row of the step per chunk, written back after the step so that no
-    // point is read while its row is being written.
-    let stride = cells / 2 + 1;
-    let mut scratch = vec![0.0f32; (cells + 1) * stride];
+    let random = LatticeRandom::new(p.seed);
     let (mut step, mut level, mut range) = (cells, 0u32, p.amplitude);
     while step > 1 {
-        let half = step / 2;
         let forced_center = if level == 0 { p.center } else { None };
-        let diamond = Step { kind: StepKind::Diamond, n, step, half, level, range, seed: p.seed, forced_center };
-        diamond.run(&mut h, &mut scratch, stride);
-        let square = Step { kind: StepKind::Square, ..diamond };
-        square.run(&mut h, &mut scratch, stride);
+        Level { n, step, level, range, random, forced_center }.run(&mut h);
         range *= p.roughness;
-        step = half;
+        step /= 2;
         level += 1;
     }
     smooth(&mut h, n, n, p.smoothing);
     square_field(n, extent, h)
 }
 
-#[derive(Clone, Copy, PartialEq)]
-enum StepKind {
-    /// Square centres from their four corners.
-    Diamond,
-    /// Edge midpoints from their diamond neighbours.
-    Square,
-}
-
-/// One diamond or square step of one level.
-#[derive(Clone, Copy)]
-struct Step {
-    kind: StepKind,
+/// One level: squares of `step` cells split into four.
+///
+/// The grid is cut into bands of `half = step / 2` rows. The first row of an even band (row
+/// `k * step`) holds the level's corners; the first row of an odd band (row `k * step + half`) holds
+/// its square centres. Each step writes rows of one parity while reading only rows of the other
+/// parity (and, within the row it writes, only columns it does not write), so bands are processed
+/// in parallel with plain borrows and every point sees exactly the values the sequential
+/// algorithm would.
+struct Level {
     /// Vertices per side.
     n: usize,
     /// Side of the squares being split, in cells.
     step: usize,
-    /// `step / 2`.
-    half: usize,
     level: u32,
     /// Offsets are uniform in ±range metres.
     range: f32,
-    seed: u64,
+    random: LatticeRandom,
     forced_center: Option<f32>,
 }
 
-impl Step {
-    /// Rows this step writes: (first row, row spacing, row count).
-    fn rows(&self) -> (usize, usize, usize) {
-        let cells = self.n - 1;
-        match self.kind {
-            StepKind::Diamond => (self.half, self.step, cells / self.step),
-            StepKind::Square => (0, self.half, cells / self.half + 1),
+impl Level {
+    fn offset(&self, x: usize, y: usize) -> f32 {
+        self.range * self.random.at(self.level, x as u32, y as u32)
+    }
+
+    fn run(&self, h: &mut [f32]) {
+        let (n, step, half) = (self.n, self.step, self.step / 2);
+        let mut corner_rows: Vec<&mut [f32]> = Vec::with_capacity(n / step + 1);
+        let mut centre_rows: Vec<&mut [f32]> = Vec::with_capacity(n / step);
+        for (b, band) in h.chunks_mut(n * half).enumerate() {
+            let row = &mut band[..n];
+            if b % 2 == 0 {
+                corner_rows.push(row);
+            } else {
+                centre_rows.push(row);
+            }
         }
-    }
-
-    /// Columns written in row `y`: (first column, count); columns are `step` apart.
-    fn columns(&self, y: usize) -> (usize, usize) {
-        let cells = self.n - 1;
-        let on_corner_row = y % self.step == 0;
-        match (self.kind, on_corner_row) {
-            (StepKind::Diamond, _) | (StepKind::Square, true) => (self.half, cells / self.step),
-            (StepKind::Square, false) => (0, cells / self.step + 1),
+        // Diamond step: centre (x, y) = mean of its four corners + offset.
+        {
+            let corners: Vec<&[f32]> = corner_rows.iter().map(|r| &**r).collect();
+            centre_rows.par_iter_mut().enumerate().for_each(|(k, row)| {
+                let (up, down) = (corners[k], corners[k + 1]);
+                let y = k * step + half;
+                for x in (half..n).step_by(step) {
+                    row[x] = match self.forced_center {
+                        Some(c) => c,
+                        None => {
+                            0.25 * (up[x - half] + up[x + half] + down[x - half] + down[x + half]) + self.offset(x, y)
+                        }
+                    };
+                }
+            });
         }
-    }
-
-    /// Computes every new value into `scratch` (reading `h` only), then writes them into `h`.
-    fn run(&self, h: &mut [f32], scratch: &mut [f32], stride: usize) {
-        let (y0, dy, count) = self.rows();
-        let src = &*h;
-        scratch.par_chunks_mut(stride).take(count).enumerate().for_each(|(r, out)| {
-            let y = y0 + r * dy;
-            let (x0, nx) = self.columns(y);
-            for (k, o) in out[..nx].iter_mut().enumerate() {
-                *o = self.value(src, x0 + k * self.step, y);
-            }
-        });
-        let scratch = &*scratch;
-        h.par_chunks_mut(self.n).enumerate().filter(|(y, _)| *y >= y0 && (y - y0) % dy == 0).for_each(|(y, row)| {
-            let (x0, nx) = self.columns(y);
-            let new = &scratch[(y - y0) / dy * stride..][..nx];
-            for (k, &v) in new.iter().enumerate() {
-                row[x0 + k * self.step] = v;
-            }
-        });
-    }
-
-    /// The new height at (x, y): the mean of the neighbours `half` away plus a random offset.
-    fn value(&self, h: &[f32], x: usize, y: usize) -> f32 {
-        let (n, d) = (self.n, self.half);
-        let at = |x: usize, y: usize| h[y * n + x];
-        let mean = match self.kind {
-            StepKind::Diamond => {
-                if let Some(c) = self.forced_center {
-                    return c;
+        // Square step on corner rows: edge midpoints between two corners of the same row, with the
+        // centres above and below (missing outside the map: paper 001 §1.3.4 leaves them out).
+        {
+            let centres: Vec<&[f32]> = centre_rows.iter().map(|r| &**r).collect();
+            corner_rows.par_iter_mut().enumerate().for_each(|(k, row)| {
+                let (above, below) = (k.checked_sub(1).map(|a| centres[a]), centres.get(k).copied());
+                let y = k * step;
+                for x in (half..n).step_by(step) {
+                    let mut sum = row[x - half] + row[x + half];
+                    let mut count = 2.0;
+                    for r in [above, below].into_iter().flatten() {
+                        sum += r[x];
+                        count += 1.0;
+                    }
+                    row[x] = sum / count + self.offset(x, y);
                 }
-                0.25 * (at(x - d, y - d) + at(x + d, y - d) + at(x - d, y + d) + at(x + d, y + d))
-            }
-            StepKind::Square => {
-                // Neighbours outside the map are left out (paper 001 §1.3.4, first option).
-                let mut sum = 0.0;
-                let mut count = 0.0;
-                if x >= d {
-                    sum += at(x - d, y);
-                    count += 1.0;
+            });
+        }
+        // Square step on centre rows: edge midpoints between two corners above and below, with the
+        // centres left and right in the same row.
+        {
+            let corners: Vec<&[f32]> = corner_rows.iter().map(|r| &**r).collect();
+            centre_rows.par_iter_mut().enumerate().for_each(|(k, row)| {
+                let (up, down) = (corners[k], corners[k + 1]);
+                let y = k * step + half;
+                for x in (0..n).step_by(step) {
+                    let mut sum = up[x] + down[x];
+                    let mut count = 2.0;
+                    if x >= half {
+                        sum += row[x - half];
+                        count += 1.0;
+                    }
+                    if x + half < n {
+                        sum += row[x + half];
+                        count += 1.0;
+                    }
+                    row[x] = sum / count + self.offset(x, y);
                 }
-                if x + d < n {
-                    sum += at(x + d, y);
-                    count += 1.0;
-                }
-                if y >= d {
-                    sum += at(x, y - d);
-                    count += 1.0;
-                }
-                if y + d < n {
-                    sum += at(x, y + d);
-                    count += 1.0;
-                }
-                sum / count
-            }
-        };
-        mean + self.range * lattice_random(self.seed, self.level, x as u32, y as u32)
+            });
+        }
     }
 }
 

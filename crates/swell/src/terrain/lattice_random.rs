@@ -8,6 +8,7 @@ const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
 
 /// SplitMix64's output function: a bijective 64-bit mixer whose output bits each depend on every
 /// input bit (same paper).
+#[inline]
 fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
@@ -15,16 +16,35 @@ fn mix(mut z: u64) -> u64 {
 }
 
 /// A uniform number in [-1, 1) for lattice point (x, y) of `stream` (e.g. a diamond-square level)
-/// under `seed`.
-///
-/// `mix(mix(seed + GOLDEN) + key * GOLDEN)` with `key = stream << 42 | y << 21 | x`, so x and y
-/// below 2^21 and streams below 2^22 never share a key. The top 24 bits give the float, so every
-/// value is an exact multiple of 2^-23.
+/// under `seed`; the same as `LatticeRandom::new(seed).at(stream, x, y)`.
 pub fn lattice_random(seed: u64, stream: u32, x: u32, y: u32) -> f32 {
-    debug_assert!(x < 1 << 21 && y < 1 << 21 && stream < 1 << 22);
-    let key = ((stream as u64) << 42) | ((y as u64) << 21) | x as u64;
-    let z = mix(mix(seed.wrapping_add(GOLDEN)).wrapping_add(key.wrapping_mul(GOLDEN)));
-    (z >> 40) as f32 * (2.0 / (1u64 << 24) as f32) - 1.0
+    LatticeRandom::new(seed).at(stream, x, y)
+}
+
+/// The lattice random numbers of one seed, with the seed's mixing done once.
+#[derive(Clone, Copy, Debug)]
+pub struct LatticeRandom {
+    mixed_seed: u64,
+}
+
+impl LatticeRandom {
+    /// The numbers of `seed`.
+    pub fn new(seed: u64) -> Self {
+        Self { mixed_seed: mix(seed.wrapping_add(GOLDEN)) }
+    }
+
+    /// A uniform number in [-1, 1) for lattice point (x, y) of `stream`.
+    ///
+    /// `mix(mix(seed + GOLDEN) + key * GOLDEN)` with `key = stream << 42 | y << 21 | x`, so x and
+    /// y below 2^21 and streams below 2^22 never share a key. The top 24 bits give the float, so
+    /// every value is an exact multiple of 2^-23.
+    #[inline]
+    pub fn at(&self, stream: u32, x: u32, y: u32) -> f32 {
+        debug_assert!(x < 1 << 21 && y < 1 << 21 && stream < 1 << 22);
+        let key = ((stream as u64) << 42) | ((y as u64) << 21) | x as u64;
+        let z = mix(self.mixed_seed.wrapping_add(key.wrapping_mul(GOLDEN)));
+        (z >> 40) as f32 * (2.0 / (1u64 << 24) as f32) - 1.0
+    }
 }
 
 #[cfg(test)]

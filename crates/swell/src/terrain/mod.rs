@@ -23,7 +23,7 @@ pub use heightmap_io::{
     MAX_HEIGHTMAP_BYTES,
 };
 pub use hills::{hills, HillsParams, MAX_HILLS};
-pub use lattice_random::lattice_random;
+pub use lattice_random::{lattice_random, LatticeRandom};
 pub use noise_terrain::{noise_terrain, NoiseTerrainParams};
 pub use random_average::{random_average, RandomAverageParams};
 pub use smoothing::{smooth, MAX_SMOOTHING_PASSES};
