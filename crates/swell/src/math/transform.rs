@@ -141,7 +141,10 @@ mod tests {
     #[test]
     fn bad_values_name_the_key() {
         let t = Transform { scale: Vec3::new(1.0, 0.0, 1.0), ..Transform::IDENTITY };
-        assert_eq!(t.validate("terrain.transform").unwrap_err().to_string(), "terrain.transform.scale[1] = 0 is outside (0, 10000]");
+        assert_eq!(
+            t.validate("terrain.transform").unwrap_err().to_string(),
+            "terrain.transform.scale[1] = 0 is outside (0, 10000]"
+        );
         let t = Transform { rotate_deg: Vec3::new(0.0, 400.0, 0.0), ..Transform::IDENTITY };
         assert!(t.validate("x").unwrap_err().to_string().starts_with("x.rotate_deg[1] = 400"));
     }

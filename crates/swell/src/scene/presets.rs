@@ -15,11 +15,29 @@ pub struct Preset {
 }
 
 /// Every preset, in the order `swell presets` lists them.
-pub const PRESETS: &[Preset] = &[Preset {
-    name: "sea",
-    description: "open sea: 10 Gerstner waves from a westerly wind under a clear sky",
-    toml: include_str!("../../presets/sea.toml"),
-}];
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "sea",
+        description: "open sea: 10 Gerstner waves from a westerly wind under a clear sky",
+        toml: include_str!("../../presets/sea.toml"),
+    },
+    // Terrain presets (issue 5).
+    Preset {
+        name: "terrain",
+        description: "a diamond-square landscape with no water, flat-shaded in paper 001's look",
+        toml: include_str!("../../presets/terrain.toml"),
+    },
+    Preset {
+        name: "valley-lake",
+        description: "a lake flooding a diamond-square valley, small Gerstner waves",
+        toml: include_str!("../../presets/valley-lake.toml"),
+    },
+    Preset {
+        name: "coast",
+        description: "swell running up a sloping sea floor to a sandy beach",
+        toml: include_str!("../../presets/coast.toml"),
+    },
+];
 
 /// The scene of preset `name`, parsed and validated.
 pub fn preset(name: &str) -> Result<Scene> {

@@ -107,9 +107,10 @@ impl GroundMap {
     /// Rasterises the mesh's triangles from above onto a `cols` x `rows` grid over their bounding
     /// box, keeping the highest surface at each grid point.
     fn from_mesh(mesh: &SurfaceMesh, cols: usize, rows: usize) -> Self {
-        let (lo, hi) = mesh.positions.iter().fold((Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)), |(lo, hi), p| {
-            (lo.min(Vec2::new(p.x, p.z)), hi.max(Vec2::new(p.x, p.z)))
-        });
+        let (lo, hi) =
+            mesh.positions.iter().fold((Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)), |(lo, hi), p| {
+                (lo.min(Vec2::new(p.x, p.z)), hi.max(Vec2::new(p.x, p.z)))
+            });
         let spacing = ((hi - lo) / Vec2::new((cols - 1) as f32, (rows - 1) as f32)).max(Vec2::splat(1e-6));
         let mut map = Self { origin: lo, spacing, cols, rows, heights: vec![f32::NEG_INFINITY; cols * rows] };
         for t in mesh.indices.chunks_exact(3) {
@@ -166,8 +167,8 @@ impl GroundMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::terrain::{FlatParams, SlopeParams};
     use crate::scene::TerrainGenerator;
+    use crate::terrain::{FlatParams, SlopeParams};
 
     fn spec(generator: TerrainGenerator, transform: Transform) -> TerrainSpec {
         TerrainSpec {
@@ -212,7 +213,11 @@ mod tests {
         // A flat floor at y = 0 in model space, tilted 10 degrees about X and lowered 3 m: model
         // (0, 0, m) goes to world (0, -3 - m sin 10°, m cos 10°), so world y = -3 - z tan 10°.
         let floor = TerrainGenerator::Flat(FlatParams { height: 0.0 });
-        let t = Transform { translate: Vec3::new(0.0, -3.0, 0.0), rotate_deg: Vec3::new(10.0, 0.0, 0.0), ..Transform::IDENTITY };
+        let t = Transform {
+            translate: Vec3::new(0.0, -3.0, 0.0),
+            rotate_deg: Vec3::new(10.0, 0.0, 0.0),
+            ..Transform::IDENTITY
+        };
         let body = TerrainBody::new(&spec(floor, t)).unwrap();
         let s = 10f32.to_radians().tan();
         for z in [-20.0f32, 0.0, 13.0] {

@@ -236,7 +236,11 @@ impl TerrainSpec {
             TerrainGenerator::Slope(p) => slope(size, extent, p),
             TerrainGenerator::Heightmap(h) => load_heightmap(
                 &h.path,
-                HeightmapOverrides { height_scale: h.height_scale, height_offset: h.height_offset, extent: self.extent },
+                HeightmapOverrides {
+                    height_scale: h.height_scale,
+                    height_offset: h.height_offset,
+                    extent: self.extent,
+                },
             ),
         }
     }

@@ -7,9 +7,9 @@
 //! length as midpoint displacement requires). Optional smoothing passes follow (paper 001 §2.1).
 //!
 //! Departures from the paper, on purpose:
-//! - the paper pins every border vertex to zero so the land sinks at the edges; swell keeps only
-//!   the four corners given and lets the border vary, averaging the three neighbours that exist
-//!   (the paper's "ignore points outside the map" option). Set low corners for the paper's look;
+//! - the paper pins every border vertex to zero so the land sinks at the edges; swell does so when
+//!   `edge_height` is set (paper: 0), and otherwise lets the border vary, averaging the three
+//!   neighbours that exist (the paper's "ignore points outside the map" option);
 //! - an optional `center` fixes the first diamond value, which makes valleys (low centre) and
 //!   mountains (high centre) on demand;
 //! - each offset comes from a hash of (seed, level, x, y) ([`super::lattice_random`]) rather than from a
@@ -39,6 +39,11 @@ pub struct DiamondSquareParams {
     /// Height (m) forced at the centre instead of the first random diamond value; absent = random.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub center: Option<f32>,
+    /// Height (m) every border vertex is pinned to (paper 001 §2.1 pins them to 0, so the land
+    /// sinks at the edges); absent = borders are generated like the interior. The corners keep
+    /// `corners`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_height: Option<f32>,
     /// Offsets of the first level are uniform in ±`amplitude` metres, in [0, [`MAX_AMPLITUDE`]].
     /// Default 20.
     pub amplitude: f32,
@@ -54,7 +59,15 @@ pub struct DiamondSquareParams {
 
 impl Default for DiamondSquareParams {
     fn default() -> Self {
-        Self { corners: [0.0; 4], center: None, amplitude: 20.0, roughness: 0.5, smoothing: 0, seed: 1 }
+        Self {
+            corners: [0.0; 4],
+            center: None,
+            edge_height: None,
+            amplitude: 20.0,
+            roughness: 0.5,
+            smoothing: 0,
+            seed: 1,
+        }
     }
 }
 
@@ -64,6 +77,9 @@ impl DiamondSquareParams {
         check_finite_vec(&format!("{key}.corners"), &self.corners)?;
         if let Some(c) = self.center {
             check_range(&format!("{key}.center"), c, -MAX_AMPLITUDE, MAX_AMPLITUDE)?;
+        }
+        if let Some(e) = self.edge_height {
+            check_range(&format!("{key}.edge_height"), e, -MAX_AMPLITUDE, MAX_AMPLITUDE)?;
         }
         check_non_negative(&format!("{key}.amplitude"), self.amplitude)?;
         check_range(&format!("{key}.amplitude"), self.amplitude, 0.0, MAX_AMPLITUDE)?;
@@ -120,7 +136,7 @@ pub fn diamond_square(size: u32, extent: Vec2, p: &DiamondSquareParams) -> Resul
     let (mut step, mut level, mut range) = (cells, 0u32, p.amplitude);
     while step > 1 {
         let forced_center = if level == 0 { p.center } else { None };
-        Level { n, step, level, range, random, forced_center }.run(&mut h);
+        Level { n, step, level, range, random, forced_center, edge: p.edge_height }.run(&mut h);
         range *= p.roughness;
         step /= 2;
         level += 1;
@@ -147,6 +163,8 @@ struct Level {
     range: f32,
     random: LatticeRandom,
     forced_center: Option<f32>,
+    /// Pinned border height, if any.
+    edge: Option<f32>,
 }
 
 impl Level {
@@ -196,7 +214,10 @@ impl Level {
                         sum += r[x];
                         count += 1.0;
                     }
-                    row[x] = sum / count + self.offset(x, y);
+                    row[x] = match self.edge {
+                        Some(e) if y == 0 || y == n - 1 => e,
+                        _ => sum / count + self.offset(x, y),
+                    };
                 }
             });
         }
@@ -218,7 +239,10 @@ impl Level {
                         sum += row[x + half];
                         count += 1.0;
                     }
-                    row[x] = sum / count + self.offset(x, y);
+                    row[x] = match self.edge {
+                        Some(e) if x == 0 || x == n - 1 => e,
+                        _ => sum / count + self.offset(x, y),
+                    };
                 }
             });
         }
@@ -260,10 +284,15 @@ mod tests {
     }
 
     #[test]
-    fn a_forced_centre_is_kept() {
-        let p = DiamondSquareParams { center: Some(-15.0), ..params(0.5, 3) };
+    fn a_forced_centre_and_pinned_edges_are_kept() {
+        let p = DiamondSquareParams { center: Some(-15.0), edge_height: Some(0.5), ..params(0.5, 3) };
         let f = diamond_square(33, Vec2::ONE, &p).unwrap();
         assert_eq!(f.height(16, 16), -15.0);
+        for k in 1..32 {
+            assert_eq!([f.height(k, 0), f.height(k, 32), f.height(0, k), f.height(32, k)], [0.5; 4]);
+        }
+        assert_eq!(f.height(32, 32), 7.0);
+        assert!(f.height(5, 7) != 0.5);
     }
 
     /// Mean absolute difference between horizontal neighbours.
@@ -302,8 +331,10 @@ mod tests {
     fn one_and_two_threads_give_identical_fields() {
         let run = |threads| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            pool.install(|| diamond_square(257, Vec2::splat(500.0), &DiamondSquareParams { smoothing: 1, ..params(0.55, 11) }))
-                .unwrap()
+            pool.install(|| {
+                diamond_square(257, Vec2::splat(500.0), &DiamondSquareParams { smoothing: 1, ..params(0.55, 11) })
+            })
+            .unwrap()
         };
         let (a, b) = (run(1), run(2));
         assert!(a.heights().iter().zip(b.heights()).all(|(x, y)| x.to_bits() == y.to_bits()));
