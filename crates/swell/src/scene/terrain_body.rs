@@ -226,4 +226,24 @@ mod tests {
         }
         assert_eq!(body.depth_at(0.0, 40.0), None);
     }
+
+    #[test]
+    fn a_world_knows_the_depth_under_each_water_vertex() {
+        // A pool: flat floor 0.2 m below the water (paper 002), 4 m x 4 m, under a 6 m x 6 m patch.
+        let text = "version = 1\n[camera]\neye = [0.0, 5.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\
+                    [water]\nmodel = 'sines'\nsize = [6.0, 6.0]\ncells = [6, 6]\n\
+                    [terrain]\ngenerator = 'flat'\nsize = 9\nextent = [4.0, 4.0]\nheight = -0.2\n";
+        let world = crate::scene::World::new(crate::scene::Scene::from_toml(text, "t").unwrap()).unwrap();
+        assert!((world.depth_at(0.5, -1.5).unwrap() - 0.2).abs() < 1e-6);
+        assert_eq!(world.depth_at(2.5, 0.0), None);
+        let t = world.terrain.as_ref().unwrap();
+        assert_eq!(t.water_depths.len(), 49);
+        // Water vertices at x, z in {-3, ..., 3}: inside |x|, |z| <= 2 the floor is 0.2 m down.
+        for (k, d) in t.water_depths.iter().enumerate() {
+            let (x, z) = ((k % 7) as f32 - 3.0, (k / 7) as f32 - 3.0);
+            let inside = x.abs() <= 2.0 && z.abs() <= 2.0;
+            assert_eq!(*d, if inside { 0.2 } else { f32::INFINITY }, "vertex ({x}, {z})");
+        }
+        assert_eq!(t.median_water_depth(), Some(0.2));
+    }
 }
