@@ -20,6 +20,9 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes, one per line.
     Presets,
+    /// Generate a terrain and write it as a 16-bit grayscale PNG heightmap plus a sidecar
+    /// (`FILE.toml`) with its height scale, offset and extent.
+    Terrain(TerrainArgs),
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.
@@ -58,4 +61,31 @@ pub struct RenderArgs {
     /// depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<u32>,
+}
+
+/// `swell terrain`.
+#[derive(Args, Debug)]
+pub struct TerrainArgs {
+    /// The generator: diamond-square, random-average, noise, hills, flat or slope.
+    #[arg(long, value_name = "NAME")]
+    pub generator: String,
+    /// Vertices per side (diamond-square: 2^n + 1, e.g. 257, 513, 1025).
+    #[arg(long, value_name = "N", default_value_t = 257)]
+    pub size: u32,
+    /// Seed of the random generators.
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
+    /// Horizontal extent in metres: `X` (square) or `XxZ` (default 200).
+    #[arg(long, value_name = "METRES")]
+    pub extent: Option<String>,
+    /// A generator key as in a scene's [terrain] section, `KEY=VALUE` with a TOML value
+    /// (e.g. `--set roughness=0.6 --set corners=[0,0,10,10]`); repeatable.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Output PNG; the sidecar is written beside it as `FILE.toml`.
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+    /// Worker threads, 0 = one per core. The heightmap does not depend on it.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: u32,
 }

@@ -58,6 +58,7 @@ pub mod render;
 pub mod scene;
 pub mod shading;
 pub mod spectrum;
+pub mod terrain;
 pub mod water;
 
 pub use error::{Error, Result};

@@ -2,6 +2,7 @@
 
 mod presets;
 mod render;
+mod terrain;
 
 use swell::scene::{preset, Scene, MAX_THREADS};
 use swell::{Error, Result};
@@ -13,6 +14,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(a) => render::run(a),
         Command::Presets => presets::run(),
+        Command::Terrain(a) => terrain::run(a),
     }
 }
 
@@ -26,7 +28,10 @@ pub fn load_scene(source: &SceneSource) -> Result<Scene> {
                 path: path.display().to_string(),
                 message: "not UTF-8 text (a scene file is TOML)".into(),
             })?;
-            Scene::from_toml(&text, &path.display().to_string())
+            let mut scene = Scene::from_toml(&text, &path.display().to_string())?;
+            // Files a scene names (heightmaps) are relative to the scene file.
+            scene.resolve_paths(path.parent().unwrap_or(std::path::Path::new("")));
+            Ok(scene)
         }
         (None, None) => unreachable!("clap requires one of --preset and --scene"),
     }

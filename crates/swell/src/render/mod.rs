@@ -2,6 +2,7 @@
 //! [`sky_pass`] clears to the sky, [`water_pass`] draws the water surface.
 
 mod sky_pass;
+mod terrain_pass;
 mod water_pass;
 
 use glam::Vec3;
@@ -51,6 +52,9 @@ impl Renderer {
             clip_from_world: scene.camera.clip_from_world(width as f32 / height as f32),
         };
         sky_pass::draw(fb, scene);
+        if let Some(terrain) = &world.terrain {
+            terrain_pass::draw(fb, &frame, terrain, &mut self.clip_vertices, &mut self.face_colors);
+        }
         if let Some(water) = &world.water {
             water_pass::draw(fb, &frame, water, &mut self.clip_vertices, &mut self.face_colors);
         }

@@ -8,6 +8,8 @@ mod render_settings;
 #[allow(clippy::module_inception)]
 mod scene;
 mod sky;
+mod terrain_body;
+mod terrain_spec;
 mod water_spec;
 mod world;
 
@@ -17,5 +19,9 @@ pub use presets::{preset, Preset, PRESETS};
 pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_THREADS};
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
 pub use sky::Sky;
+pub use terrain_body::TerrainBody;
+pub use terrain_spec::{
+    HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,
+};
 pub use water_spec::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
 pub use world::{WaterBody, World};

@@ -86,6 +86,22 @@ pub const PRESETS: &[Preset] = &[
         description: "paper 000 figure 4.5: main wave plus nine waves of various lengths and directions",
         toml: include_str!("../../presets/paper-000-fig-4-5.toml"),
     },
+    // Terrain presets (issue 5).
+    Preset {
+        name: "terrain",
+        description: "a diamond-square landscape with no water, flat-shaded in paper 001's look",
+        toml: include_str!("../../presets/terrain.toml"),
+    },
+    Preset {
+        name: "valley-lake",
+        description: "a lake flooding a diamond-square valley, small Gerstner waves",
+        toml: include_str!("../../presets/valley-lake.toml"),
+    },
+    Preset {
+        name: "coast",
+        description: "swell running up a sloping sea floor to a sandy beach",
+        toml: include_str!("../../presets/coast.toml"),
+    },
 ];
 
 /// The scene of preset `name`, parsed and validated.

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::water_spec::{deserialize_at, WaterSpec};
+use super::TerrainSpec;
 use super::{Camera, Light, RenderSettings, Sky};
 use crate::error::{Error, Result};
 
@@ -28,6 +29,8 @@ pub struct Scene {
     pub sky: Sky,
     /// The water body, if any.
     pub water: Option<WaterSpec>,
+    /// The terrain, if any; `[terrain]` in the file.
+    pub terrain: Option<TerrainSpec>,
     /// Image settings.
     pub render: RenderSettings,
 }
@@ -61,6 +64,16 @@ impl Scene {
             }
             None => None,
         };
+        let terrain = match table.remove("terrain") {
+            Some(toml::Value::Table(t)) => Some(TerrainSpec::from_table(t, source)?),
+            Some(other) => {
+                return Err(Error::Parse {
+                    path: source.into(),
+                    message: format!("terrain must be a table ([terrain]), found a {}", other.type_str()),
+                })
+            }
+            None => None,
+        };
         let file: SceneFile = deserialize_at(table, "", source)?;
         let scene = Scene {
             version: file.version,
@@ -68,6 +81,7 @@ impl Scene {
             lights: file.lights,
             sky: file.sky,
             water,
+            terrain,
             render: file.render,
         };
         scene.validate()?;
@@ -86,6 +100,9 @@ impl Scene {
         let mut table = toml::Table::try_from(&file).expect("scene sections serialise to TOML");
         if let Some(w) = &self.water {
             table.insert("water".into(), toml::Value::Table(w.to_table()));
+        }
+        if let Some(t) = &self.terrain {
+            table.insert("terrain".into(), toml::Value::Table(t.to_table()));
         }
         toml::to_string_pretty(&table).expect("a TOML table always serialises")
     }
@@ -118,7 +135,18 @@ impl Scene {
             w.validate()?;
             w.model.build()?;
         }
+        if let Some(t) = &self.terrain {
+            t.validate()?;
+        }
         Ok(())
+    }
+
+    /// Makes relative file paths in the scene (heightmaps) relative to `dir`, the directory of the
+    /// scene file they were written in.
+    pub fn resolve_paths(&mut self, dir: &std::path::Path) {
+        if let Some(t) = &mut self.terrain {
+            t.resolve_paths(dir);
+        }
     }
 }
 

@@ -1,6 +1,6 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
-use super::{Scene, WaterMaterial};
+use super::{Scene, TerrainBody, WaterMaterial};
 use crate::error::Result;
 use crate::mesh::SurfaceMesh;
 use crate::water::WaveModel;
@@ -21,6 +21,8 @@ pub struct World {
     pub scene: Scene,
     /// The water, if the scene has any.
     pub water: Option<WaterBody>,
+    /// The terrain, if the scene has any (static: built once, not changed by updates).
+    pub terrain: Option<TerrainBody>,
     time: f64,
 }
 
@@ -37,7 +39,12 @@ impl World {
             }
             None => None,
         };
-        let mut world = Self { scene, water, time: f64::NAN };
+        let terrain = match &scene.terrain {
+            Some(spec) => Some(TerrainBody::new(spec)?),
+            None => None,
+        };
+        let mut world = Self { scene, water, terrain, time: f64::NAN };
+        world.measure_water_depths();
         world.update(0.0)?;
         Ok(world)
     }
@@ -53,6 +60,25 @@ impl World {
         }
         self.time = t;
         Ok(())
+    }
+
+    /// Depth (m) of the ground below the water at rest (y = 0) at world (x, z): positive under
+    /// water, negative on dry land, `None` where there is no terrain below (deep water).
+    pub fn depth_at(&self, x: f32, z: f32) -> Option<f32> {
+        self.terrain.as_ref().and_then(|t| t.depth_at(x, z))
+    }
+
+    /// Fills the terrain's depth under each water vertex (see [`TerrainBody::water_depths`]).
+    fn measure_water_depths(&mut self) {
+        if let (Some(t), Some(w)) = (&mut self.terrain, &self.water) {
+            let grid = w.mesh.grid;
+            t.water_depths = (0..grid.vertex_count())
+                .map(|k| {
+                    let r = grid.rest_position(k % grid.verts_x(), k / grid.verts_x());
+                    t.depth_at(r.x, r.y).unwrap_or(f32::INFINITY)
+                })
+                .collect();
+        }
     }
 
     /// The time of the last [`World::update`], seconds.

@@ -5,10 +5,12 @@
 
 mod fresnel;
 mod lighting;
+mod terrain_color;
 mod water_optics;
 
 pub use fresnel::fresnel_dielectric;
 pub use lighting::{lambert, Environment};
+pub use terrain_color::{shade_terrain, TerrainMaterial, TerrainShading};
 pub use water_optics::shade_water;
 
 use serde::{Deserialize, Serialize};

@@ -1,0 +1,131 @@
+//! `swell terrain` end to end: the real binary in a temporary directory.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn swell(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_swell")).current_dir(dir).args(args).output().expect("the swell binary runs")
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn writes_a_16_bit_heightmap_that_a_scene_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = swell(
+        dir.path(),
+        &[
+            "terrain",
+            "--generator",
+            "diamond-square",
+            "--size",
+            "65",
+            "--seed",
+            "5",
+            "--extent",
+            "120x100",
+            "--set",
+            "amplitude=30",
+            "--set",
+            "corners=[0, 0, 10, 10]",
+            "--out",
+            "map.png",
+        ],
+    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(files_in(dir.path()), ["map.png", "map.png.toml"]);
+    let img = image::open(dir.path().join("map.png")).unwrap();
+    assert_eq!(img.color(), image::ColorType::L16);
+    assert_eq!((img.width(), img.height()), (65, 65));
+    let grey = img.to_luma16();
+    // Scaled to the full 16-bit range: the lowest height is 0, the highest 65535.
+    assert_eq!(grey.pixels().map(|p| p.0[0]).min(), Some(0));
+    assert_eq!(grey.pixels().map(|p| p.0[0]).max(), Some(65535));
+    let sidecar = std::fs::read_to_string(dir.path().join("map.png.toml")).unwrap();
+    assert!(sidecar.contains("extent = [120.0, 100.0]"), "{sidecar}");
+
+    // The same seed gives the same file.
+    let again = swell(
+        dir.path(),
+        &[
+            "terrain",
+            "--generator",
+            "diamond-square",
+            "--size",
+            "65",
+            "--seed",
+            "5",
+            "--extent",
+            "120x100",
+            "--set",
+            "amplitude=30",
+            "--set",
+            "corners=[0, 0, 10, 10]",
+            "--out",
+            "again.png",
+            "--threads",
+            "1",
+        ],
+    );
+    assert!(again.status.success());
+    assert_eq!(
+        std::fs::read(dir.path().join("map.png")).unwrap(),
+        std::fs::read(dir.path().join("again.png")).unwrap()
+    );
+
+    // A scene in a subdirectory loads it by a path relative to the scene file, and shows it.
+    std::fs::create_dir(dir.path().join("scenes")).unwrap();
+    let scene = |terrain: &str| {
+        format!(
+            "version = 1\n[camera]\neye = [0.0, 90.0, 110.0]\ntarget = [0.0, 0.0, 0.0]\n\
+             [[light]]\ntype = 'directional'\ndirection = [0.0, -1.0, 0.0]\n[render]\nwidth = 96\nheight = 64\n{terrain}"
+        )
+    };
+    std::fs::write(
+        dir.path().join("scenes/land.toml"),
+        scene("[terrain]\ngenerator = 'heightmap'\npath = '../map.png'\n"),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("scenes/empty.toml"), scene("")).unwrap();
+    for name in ["land", "empty"] {
+        let r =
+            swell(dir.path(), &["render", "--scene", &format!("scenes/{name}.toml"), "--out", &format!("{name}.png")]);
+        assert!(r.status.success(), "{name}: {}", String::from_utf8_lossy(&r.stderr));
+    }
+    let land = image::open(dir.path().join("land.png")).unwrap().to_rgb8();
+    let empty = image::open(dir.path().join("empty.png")).unwrap().to_rgb8();
+    // The terrain covers the image centre, where the empty scene shows only the sky's ground colour.
+    assert_ne!(land.get_pixel(48, 32), empty.get_pixel(48, 32));
+    let differing = land.pixels().zip(empty.pixels()).filter(|(a, b)| a != b).count();
+    assert!(differing > 96 * 64 / 4, "only {differing} pixels show terrain");
+}
+
+#[test]
+fn bad_input_fails_clearly_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&[&str], &str); 5] = [
+        (&["--generator", "diamond-square", "--size", "100"], "2^n + 1"),
+        (&["--generator", "volcano"], "valid: diamond-square, random-average, noise, hills, flat, slope, heightmap"),
+        (&["--generator", "noise", "--set", "octaves=99"], "terrain.octaves = 99 is outside [1, 16]"),
+        (&["--generator", "hills", "--extent=-5"], "terrain.extent[0] = -5"),
+        (&["--generator", "heightmap"], "heightmap"),
+    ];
+    for (args, expected) in cases {
+        let mut full = vec!["terrain"];
+        full.extend_from_slice(args);
+        full.extend_from_slice(&["--out", "map.png"]);
+        let out = swell(dir.path(), &full);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+        assert!(files_in(dir.path()).is_empty(), "{args:?} left {:?}", files_in(dir.path()));
+    }
+    let out = swell(dir.path(), &["terrain", "--generator", "flat", "--out", "map.jpg"]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains(".png"));
+    assert!(files_in(dir.path()).is_empty());
+}

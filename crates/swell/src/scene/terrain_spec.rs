@@ -1,0 +1,323 @@
+//! The `[terrain]` section: which generator, how large, where, and how it looks.
+//!
+//! The generator's own keys sit directly in `[terrain]` beside `generator`, `size` and `extent`;
+//! placement is in `[terrain.transform]` and the look in `[terrain.material]`:
+//!
+//! ```toml
+//! [terrain]
+//! generator = "diamond-square"
+//! size = 257
+//! extent = [400.0, 400.0]
+//! roughness = 0.5
+//! seed = 7
+//! [terrain.transform]
+//! translate = [0.0, -5.0, 0.0]
+//! [terrain.material]
+//! shading = "flat"
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+
+use super::water_spec::deserialize_at;
+use crate::error::{check_count, check_finite_vec, check_positive, check_range, Error, Result};
+use crate::math::Transform;
+use crate::shading::TerrainMaterial;
+use crate::terrain::{
+    check_diamond_square_size, diamond_square, flat, hills, load_heightmap, noise_terrain, random_average, slope,
+    DiamondSquareParams, FlatParams, HeightField, HeightmapOverrides, HillsParams, NoiseTerrainParams,
+    RandomAverageParams, SlopeParams, MAX_TERRAIN_SIZE,
+};
+
+/// Vertices per side when `terrain.size` is not given.
+pub const DEFAULT_TERRAIN_SIZE: u32 = 257;
+
+/// Extent (m) when `terrain.extent` is not given (and, for heightmaps, not in the sidecar).
+pub const DEFAULT_TERRAIN_EXTENT: Vec2 = Vec2::new(200.0, 200.0);
+
+/// A heightmap file: `generator = "heightmap"`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeightmapSpec {
+    /// The PNG (8- or 16-bit grayscale), relative to the scene file's directory unless absolute.
+    pub path: PathBuf,
+    /// Metres per full grey range; overrides the sidecar's. Required without a sidecar.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_scale: Option<f32>,
+    /// Height (m) of grey 0; overrides the sidecar's. Default: the sidecar's, else 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_offset: Option<f32>,
+}
+
+/// The generator and its parameters, selected by `terrain.generator`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "generator", rename_all = "kebab-case")]
+pub enum TerrainGenerator {
+    /// `generator = "diamond-square"` (paper 001 §2.1).
+    DiamondSquare(DiamondSquareParams),
+    /// `generator = "random-average"` (paper 001 §1.3.1).
+    RandomAverage(RandomAverageParams),
+    /// `generator = "noise"` (paper 001 §1.3.2).
+    Noise(NoiseTerrainParams),
+    /// `generator = "hills"` (paper 001 §1.3.3).
+    Hills(HillsParams),
+    /// `generator = "flat"`.
+    Flat(FlatParams),
+    /// `generator = "slope"`.
+    Slope(SlopeParams),
+    /// `generator = "heightmap"`.
+    Heightmap(HeightmapSpec),
+}
+
+/// The names `terrain.generator` accepts.
+pub const TERRAIN_GENERATORS: &[&str] =
+    &["diamond-square", "random-average", "noise", "hills", "flat", "slope", "heightmap"];
+
+impl TerrainGenerator {
+    /// Reads the generator's keys (everything in `[terrain]` but the common keys).
+    pub fn from_table(generator: &str, rest: toml::Table, source: &str) -> Result<Self> {
+        Ok(match generator {
+            "diamond-square" => Self::DiamondSquare(deserialize_at(rest, "terrain", source)?),
+            "random-average" => Self::RandomAverage(deserialize_at(rest, "terrain", source)?),
+            "noise" => Self::Noise(deserialize_at(rest, "terrain", source)?),
+            "hills" => Self::Hills(deserialize_at(rest, "terrain", source)?),
+            "flat" => Self::Flat(deserialize_at(rest, "terrain", source)?),
+            "slope" => Self::Slope(deserialize_at(rest, "terrain", source)?),
+            "heightmap" => Self::Heightmap(deserialize_at(rest, "terrain", source)?),
+            other => {
+                return Err(Error::Parse {
+                    path: source.to_string(),
+                    message: format!(
+                        "terrain.generator = \"{other}\" is not a generator; valid: {}",
+                        TERRAIN_GENERATORS.join(", ")
+                    ),
+                })
+            }
+        })
+    }
+
+    /// Checks the generator's parameters, naming keys under `terrain`.
+    pub fn validate(&self) -> Result<()> {
+        let key = "terrain";
+        match self {
+            Self::DiamondSquare(p) => p.validate(key),
+            Self::RandomAverage(p) => p.validate(key),
+            Self::Noise(p) => p.validate(key),
+            Self::Hills(p) => p.validate(key),
+            Self::Flat(p) => p.validate(key),
+            Self::Slope(p) => p.validate(key),
+            Self::Heightmap(h) => {
+                if h.path.as_os_str().is_empty() {
+                    return Err(Error::invalid("terrain.path", "is empty; give the heightmap PNG's path"));
+                }
+                if let Some(s) = h.height_scale {
+                    check_positive("terrain.height_scale", s)?;
+                }
+                if let Some(o) = h.height_offset {
+                    check_range("terrain.height_offset", o, -1.0e6, 1.0e6)?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// The whole `[terrain]` section.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TerrainSpec {
+    /// Vertices per side; `None` = [`DEFAULT_TERRAIN_SIZE`] (heightmaps take the image's size and
+    /// refuse this key). Diamond-square needs 2^n + 1.
+    pub size: Option<u32>,
+    /// Horizontal extent (x, z) in metres before the transform; `None` = [`DEFAULT_TERRAIN_EXTENT`]
+    /// (heightmaps: the sidecar's, else the default).
+    pub extent: Option<Vec2>,
+    /// Placement in the world.
+    pub transform: Transform,
+    /// Look.
+    pub material: TerrainMaterial,
+    /// Generator and its parameters.
+    pub generator: TerrainGenerator,
+}
+
+/// Keys of `[terrain]` that are not the generator's.
+const COMMON_KEYS: [&str; 2] = ["size", "extent"];
+
+impl TerrainSpec {
+    /// Reads the `[terrain]` table; `source` names the file in errors.
+    pub fn from_table(mut table: toml::Table, source: &str) -> Result<Self> {
+        let generator = match table.remove("generator") {
+            Some(toml::Value::String(s)) => s,
+            Some(v) => {
+                return Err(Error::Parse {
+                    path: source.into(),
+                    message: format!(
+                        "terrain.generator = {v} must be a string, one of {}",
+                        TERRAIN_GENERATORS.join(", ")
+                    ),
+                })
+            }
+            None => {
+                return Err(Error::Parse {
+                    path: source.into(),
+                    message: format!("terrain.generator is missing; valid: {}", TERRAIN_GENERATORS.join(", ")),
+                })
+            }
+        };
+        let mut common = toml::Table::new();
+        for key in COMMON_KEYS {
+            if let Some(v) = table.remove(key) {
+                common.insert(key.to_string(), v);
+            }
+        }
+        let common: CommonKeys = deserialize_at(common, "terrain", source)?;
+        let transform = match table.remove("transform") {
+            Some(v) => deserialize_at(v, "terrain.transform", source)?,
+            None => Transform::IDENTITY,
+        };
+        let material = match table.remove("material") {
+            Some(v) => deserialize_at(v, "terrain.material", source)?,
+            None => TerrainMaterial::default(),
+        };
+        Ok(Self {
+            size: common.size,
+            extent: common.extent,
+            transform,
+            material,
+            generator: TerrainGenerator::from_table(&generator, table, source)?,
+        })
+    }
+
+    /// The `[terrain]` table as written to a scene file.
+    pub fn to_table(&self) -> toml::Table {
+        let mut t = to_table(&self.generator);
+        t.extend(to_table(&CommonKeys { size: self.size, extent: self.extent }));
+        t.insert("transform".into(), toml::Value::Table(to_table(&self.transform)));
+        t.insert("material".into(), toml::Value::Table(to_table(&self.material)));
+        t
+    }
+
+    /// Checks everything that does not need a file read.
+    pub fn validate(&self) -> Result<()> {
+        if let Some(size) = self.size {
+            match &self.generator {
+                TerrainGenerator::Heightmap(_) => {
+                    return Err(Error::invalid(
+                        "terrain.size",
+                        format!("{size} given, but a heightmap takes its size from the image; remove the key"),
+                    ))
+                }
+                TerrainGenerator::DiamondSquare(_) => check_diamond_square_size("terrain.size", size)?,
+                _ => check_count("terrain.size", size, 2, MAX_TERRAIN_SIZE)?,
+            }
+        }
+        if let Some(e) = self.extent {
+            check_finite_vec("terrain.extent", &e.to_array())?;
+            check_positive("terrain.extent[0]", e.x)?;
+            check_positive("terrain.extent[1]", e.y)?;
+        }
+        self.transform.validate("terrain.transform")?;
+        self.material.validate("terrain.material")?;
+        self.generator.validate()
+    }
+
+    /// Runs the generator (or loads the heightmap) and returns the field in model space.
+    pub fn build(&self) -> Result<HeightField> {
+        self.validate()?;
+        let size = self.size.unwrap_or(DEFAULT_TERRAIN_SIZE);
+        let extent = self.extent.unwrap_or(DEFAULT_TERRAIN_EXTENT);
+        match &self.generator {
+            TerrainGenerator::DiamondSquare(p) => diamond_square(size, extent, p),
+            TerrainGenerator::RandomAverage(p) => random_average(size, extent, p),
+            TerrainGenerator::Noise(p) => noise_terrain(size, extent, p),
+            TerrainGenerator::Hills(p) => hills(size, extent, p),
+            TerrainGenerator::Flat(p) => flat(size, extent, p),
+            TerrainGenerator::Slope(p) => slope(size, extent, p),
+            TerrainGenerator::Heightmap(h) => load_heightmap(
+                &h.path,
+                HeightmapOverrides {
+                    height_scale: h.height_scale,
+                    height_offset: h.height_offset,
+                    extent: self.extent,
+                },
+            ),
+        }
+    }
+
+    /// Makes a relative heightmap path relative to `dir` (the scene file's directory).
+    pub fn resolve_paths(&mut self, dir: &Path) {
+        if let TerrainGenerator::Heightmap(h) = &mut self.generator {
+            if h.path.is_relative() {
+                h.path = dir.join(&h.path);
+            }
+        }
+    }
+}
+
+/// `size` and `extent`, read apart from the generator's keys.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CommonKeys {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    size: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    extent: Option<Vec2>,
+}
+
+fn to_table<T: Serialize>(v: &T) -> toml::Table {
+    toml::Table::try_from(v).expect("swell's own scene types always serialise to a TOML table")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<TerrainSpec> {
+        let t = TerrainSpec::from_table(toml::from_str(text).unwrap(), "test")?;
+        t.validate()?;
+        Ok(t)
+    }
+
+    #[test]
+    fn a_section_round_trips_and_builds() {
+        let t = parse(
+            "generator = 'diamond-square'\nsize = 33\nextent = [50.0, 40.0]\nroughness = 0.6\nseed = 9\n\
+             [transform]\ntranslate = [1.0, -2.0, 0.0]\nrotate_deg = [0.0, 30.0, 0.0]\n[material]\nshading = 'flat'\n",
+        )
+        .unwrap();
+        assert_eq!(TerrainSpec::from_table(t.to_table(), "again").unwrap(), t);
+        let f = t.build().unwrap();
+        assert_eq!((f.cols(), f.extent()), (33, Vec2::new(50.0, 40.0)));
+        for g in ["random-average", "noise", "hills", "flat", "slope"] {
+            let t = parse(&format!("generator = '{g}'\nsize = 17\n")).unwrap();
+            assert_eq!(TerrainSpec::from_table(t.to_table(), "again").unwrap(), t);
+            assert_eq!(t.build().unwrap().cols(), 17, "{g}");
+        }
+    }
+
+    #[test]
+    fn errors_name_the_key_and_the_rule() {
+        let e = parse("generator = 'diamond-square'\nsize = 100\n").unwrap_err().to_string();
+        assert!(e.starts_with("terrain.size: 100 is not a diamond-square size") && e.contains("2^n + 1"), "{e}");
+        let e = parse("generator = 'volcano'\n").unwrap_err().to_string();
+        assert!(e.contains("volcano") && e.contains("diamond-square, random-average"), "{e}");
+        let e = parse("generator = 'noise'\noctaves = 40\n").unwrap_err().to_string();
+        assert_eq!(e, "terrain.octaves = 40 is outside [1, 16]");
+        let e = parse("generator = 'flat'\nroughness = 0.5\n").unwrap_err().to_string();
+        assert!(e.contains("unknown field `roughness`"), "{e}");
+        let e = parse("generator = 'heightmap'\npath = 'x.png'\nsize = 65\n").unwrap_err().to_string();
+        assert!(e.starts_with("terrain.size: 65 given, but a heightmap"), "{e}");
+        let e = parse("generator = 'flat'\n[transform]\nscale = [1.0, -1.0, 1.0]\n").unwrap_err().to_string();
+        assert!(e.starts_with("terrain.transform.scale[1] = -1"), "{e}");
+        let e = parse("generator = 'flat'\n[material]\nrock_slope_deg = 95.0\n").unwrap_err().to_string();
+        assert!(e.starts_with("terrain.material.rock_slope_deg = 95"), "{e}");
+    }
+
+    #[test]
+    fn relative_heightmap_paths_follow_the_scene_file() {
+        let mut t = parse("generator = 'heightmap'\npath = 'maps/a.png'\nheight_scale = 10.0\n").unwrap();
+        t.resolve_paths(Path::new("/scenes"));
+        assert!(matches!(&t.generator, TerrainGenerator::Heightmap(h) if h.path == Path::new("/scenes/maps/a.png")));
+    }
+}

@@ -1,0 +1,29 @@
+//! Terrain: height fields in metres and the generators that make them (paper 001), heightmap
+//! files, and simple bottoms for pools and beaches.
+//!
+//! Every generator takes a size (vertices per side), a horizontal extent in metres and its own
+//! parameters (with `validate`), and returns a [`HeightField`] centred on the model origin. The
+//! scene places it in the world with a [`crate::math::Transform`].
+
+mod bottom;
+mod diamond_square;
+mod height_field;
+mod heightmap_io;
+mod hills;
+mod lattice_random;
+mod noise_terrain;
+mod random_average;
+mod smoothing;
+
+pub use bottom::{flat, slope, FlatParams, SlopeParams};
+pub use diamond_square::{check_diamond_square_size, diamond_square, DiamondSquareParams, MAX_AMPLITUDE};
+pub use height_field::{HeightField, MAX_TERRAIN_SIZE};
+pub use heightmap_io::{
+    load_heightmap, read_grey_png, read_sidecar, sidecar_path, write_heightmap, HeightmapOverrides, HeightmapSidecar,
+    MAX_HEIGHTMAP_BYTES,
+};
+pub use hills::{hills, HillsParams, MAX_HILLS};
+pub use lattice_random::{lattice_random, LatticeRandom};
+pub use noise_terrain::{noise_terrain, NoiseTerrainParams};
+pub use random_average::{random_average, RandomAverageParams};
+pub use smoothing::{smooth, MAX_SMOOTHING_PASSES};
