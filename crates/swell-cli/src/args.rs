@@ -20,6 +20,8 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes, one per line.
     Presets,
+    /// Time the papers' experiments on this machine; write Markdown, JSON and PNG results.
+    Bench(BenchArgs),
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.
@@ -58,4 +60,22 @@ pub struct RenderArgs {
     /// depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<u32>,
+}
+
+/// `swell bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// grid-size, polygons, waves (paper 000); zbuffer-threads, zbuffer-sizes (paper 001); realtime;
+    /// or all.
+    #[arg(value_name = "EXPERIMENT")]
+    pub experiment: String,
+    /// Directory for the results (created if missing): EXPERIMENT.md, .json and .png.
+    #[arg(long, value_name = "DIR", default_value = "bench-results")]
+    pub out: PathBuf,
+    /// Fewer runs per row (shapes, not figures): `swell bench all --quick` takes a few minutes.
+    #[arg(long)]
+    pub quick: bool,
+    /// Exactly N timed runs per row and no warm-up (for tests).
+    #[arg(long, value_name = "N", hide = true)]
+    pub runs: Option<u32>,
 }

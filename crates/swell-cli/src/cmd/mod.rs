@@ -1,5 +1,6 @@
 //! One file per subcommand, plus what they share: loading a scene and building a thread pool.
 
+mod bench;
 mod presets;
 mod render;
 
@@ -13,6 +14,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(a) => render::run(a),
         Command::Presets => presets::run(),
+        Command::Bench(a) => bench::run(a),
     }
 }
 
