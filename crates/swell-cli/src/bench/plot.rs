@@ -7,9 +7,11 @@
 use std::path::Path;
 use std::sync::OnceLock;
 
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use swell::export::write_png;
+use swell::export::write_atomically;
 use swell::{Error, Result};
 
 use super::report::{PlotKind, Report};
@@ -48,14 +50,19 @@ pub fn write_plot(report: &Report, dir: &Path) -> Result<()> {
             message: format!("cannot draw the plot: {message}"),
         })?;
     }
-    let rgba: Vec<u8> = rgb.chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
-    write_png(&path, w, h, &rgba)
+    // Best compression: plots are flat colours and compress ~3x better than renders do.
+    write_atomically(&path, |out| {
+        let encoder = PngEncoder::new_with_quality(out, CompressionType::Best, FilterType::Adaptive);
+        encoder
+            .write_image(&rgb, w, h, ExtendedColorType::Rgb8)
+            .map_err(|e| Error::Image { path: path.clone(), message: e.to_string() })
+    })
 }
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
 
-/// Whether the parameter doubles from row to row (threads, heightmap sides): then x is drawn on a
-/// log2 axis so the rows are evenly spaced.
+/// Whether the parameter doubles from row to row (threads 1..32, heightmap sides 33..513): then
+/// rows are drawn evenly spaced and labelled, as on a log axis.
 fn doubling(report: &Report) -> bool {
     report.series.iter().all(|s| {
         s.points.len() >= 3 && s.points.windows(2).all(|p| p[0].x > 0.0 && (1.8..=2.2).contains(&(p[1].x / p[0].x)))
@@ -66,11 +73,18 @@ fn doubling(report: &Report) -> bool {
 fn relative(report: &Report, root: &Area) -> std::result::Result<(), String> {
     let e = |e: DrawingAreaErrorKind<_>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let log_x = doubling(report);
-    let tx = |x: f64| if log_x { x.log2() } else { x };
-    let xs = report.series.iter().flat_map(|s| s.points.iter().map(|p| tx(p.x)));
+    let by_row = doubling(report);
+    // Row labels for an evenly spaced axis, from the longest series.
+    let rows: Vec<String> = report
+        .series
+        .iter()
+        .max_by_key(|s| s.points.len())
+        .map(|s| s.points.iter().map(|p| p.label.clone()).collect())
+        .unwrap_or_default();
+    let tx = |i: usize, x: f64| if by_row { i as f64 } else { x };
+    let xs = report.series.iter().flat_map(|s| s.points.iter().enumerate().map(|(i, p)| tx(i, p.x)));
     let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
-    let pad = 0.03 * (x1 - x0).max(1.0);
+    let pad = if by_row { 0.3 } else { 0.03 * (x1 - x0).max(1.0) };
     let mut y1: f64 = 1.0;
     for s in &report.series {
         for i in 0..s.points.len() {
@@ -83,14 +97,27 @@ fn relative(report: &Report, root: &Area) -> std::result::Result<(), String> {
         .margin(16)
         .x_label_area_size(48)
         .y_label_area_size(64)
-        .build_cartesian_2d((x0 - pad)..(x1 + pad), 0.0..(1.1 * y1))
+        // Headroom above the highest point for the legend.
+        .build_cartesian_2d((x0 - pad)..(x1 + pad), 0.0..(1.35 * y1))
         .map_err(e)?;
-    let x_desc = if log_x { format!("{} (log scale)", report.x_label) } else { report.x_label.clone() };
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
+    let row_label = |v: &f64| {
+        let i = v.round();
+        if (v - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < rows.len() {
+            rows[i as usize].clone()
+        } else {
+            String::new()
+        }
+    };
+    let plain = |v: &f64| format!("{v}");
+    let mut mesh = chart.configure_mesh();
+    if by_row {
+        mesh.x_labels(4 * rows.len() + 1).x_label_formatter(&row_label).disable_x_mesh();
+    } else {
+        mesh.x_label_formatter(&plain);
+    }
+    mesh.x_desc(report.x_label.as_str())
         .y_desc("time / time of the first row")
-        .x_label_formatter(&|v| if log_x { format!("{}", 2f64.powf(*v).round()) } else { format!("{v}") })
+        .max_light_lines(1)
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17))
         .draw()
@@ -98,7 +125,7 @@ fn relative(report: &Report, root: &Area) -> std::result::Result<(), String> {
     for (k, s) in report.series.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let name = if s.name.is_empty() { String::new() } else { format!(", {}", s.name) };
-        let ours: Vec<(f64, f64)> = (0..s.points.len()).map(|i| (tx(s.points[i].x), s.swell_relative(i))).collect();
+        let ours: Vec<(f64, f64)> = (0..s.points.len()).map(|i| (tx(i, s.points[i].x), s.swell_relative(i))).collect();
         chart
             .draw_series(LineSeries::new(ours.clone(), color.stroke_width(3)))
             .map_err(e)?
@@ -106,13 +133,18 @@ fn relative(report: &Report, root: &Area) -> std::result::Result<(), String> {
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3)));
         chart.draw_series(ours.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(e)?;
         let paper: Vec<(f64, f64)> =
-            (0..s.points.len()).filter_map(|i| Some((tx(s.points[i].x), s.paper_relative(i)?))).collect();
+            (0..s.points.len()).filter_map(|i| Some((tx(i, s.points[i].x), s.paper_relative(i)?))).collect();
         if paper.len() >= 2 {
             chart
                 .draw_series(DashedLineSeries::new(paper.clone(), 8, 5, color.stroke_width(2)))
                 .map_err(e)?
                 .label(format!("paper{name}"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    // A dashed sample, in pixels relative to (x, y).
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (9, 0)], color.stroke_width(2))
+                        + PathElement::new(vec![(15, 0), (24, 0)], color.stroke_width(2))
+                });
             chart.draw_series(paper.iter().map(|&p| TriangleMarker::new(p, 5, color))).map_err(e)?;
         }
     }
@@ -153,7 +185,8 @@ fn fps(report: &Report, root: &Area) -> std::result::Result<(), String> {
     chart
         .configure_mesh()
         .disable_x_mesh()
-        .x_labels(points.len() * 2 + 1)
+        .max_light_lines(1)
+        .x_labels(points.len() * 4 + 1)
         .x_label_formatter(&label)
         .x_desc(report.x_label.as_str())
         .y_desc("frames per second (median)")
@@ -172,7 +205,11 @@ fn fps(report: &Report, root: &Area) -> std::result::Result<(), String> {
             .draw_series(DashedLineSeries::new(vec![(-0.5, fps), (n - 0.5, fps)], 8, 5, color.stroke_width(2)))
             .map_err(e)?
             .label(format!("{fps} FPS"))
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2)));
+            .legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (9, 0)], color.stroke_width(2))
+                    + PathElement::new(vec![(15, 0), (24, 0)], color.stroke_width(2))
+            });
     }
     chart
         .configure_series_labels()
