@@ -194,9 +194,8 @@ pub fn zbuffer_sizes(ctx: &Context) -> Result<Report> {
     let mut r =
         report(ctx, "zbuffer-sizes", "z-buffer time against heightmap size", "4.2", "heightmap side (vertices)");
     let all = ctx.machine.logical_cores as u32;
-    for (threads, name) in
-        [(1, "1 thread (paper: 1 thread)".to_string()), (all, format!("{all} threads = all (paper: 8 = all)"))]
-    {
+    let all_name = format!("all threads ({all} here, 8 in the paper)");
+    for (threads, name) in [(1, "1 thread".to_string()), (all, all_name)] {
         let mut points = Vec::new();
         for (size, one, eight) in SIZES {
             ctx.progress(&format!("{size}x{size} on {threads} threads"));
