@@ -106,7 +106,8 @@ impl Report {
         let _ = writeln!(
             s,
             "- Each row: {} warm-up run(s), then {} to {} timed runs within {} s; median and spread \
-             (min–max) in milliseconds.",
+             (min–max) of wall-clock time in milliseconds; CPU = the process's CPU time per run, all threads \
+             (below the median: the run waited for a CPU; above: it ran in parallel).",
             r.warmup, r.min_runs, r.max_runs, r.budget_s
         );
         if self.machine.build == "debug" {
@@ -124,32 +125,31 @@ impl Report {
 
     fn table(&self, s: &mut String, series: &Series) {
         let x = &self.x_label;
+        // Columns every table starts with: the parameter and swell's timing.
+        let head = format!("| {x} | swell median (ms) | min–max (ms) | CPU (ms) |");
+        let cells = |p: &Point| {
+            format!("| {} | {} | {} | {} |", p.label, ms(p.swell.median_ms), spread(&p.swell), opt(p.swell.cpu_ms, ms))
+        };
         match (self.plot, self.paper_unit) {
             (PlotKind::Fps, _) => {
-                let _ = writeln!(s, "| {x} | swell median (ms) | min–max (ms) | frames per second |");
-                let _ = writeln!(s, "|---|---:|---:|---:|");
+                let _ = writeln!(s, "{head} frames per second |\n|---|---:|---:|---:|---:|");
                 for p in &series.points {
-                    let fps = 1e3 / p.swell.median_ms;
-                    let _ =
-                        writeln!(s, "| {} | {} | {} | {fps:.1} |", p.label, ms(p.swell.median_ms), spread(&p.swell));
+                    let _ = writeln!(s, "{} {:.1} |", cells(p), 1e3 / p.swell.median_ms);
                 }
             }
             (_, PaperUnit::Seconds) => {
                 let _ = writeln!(
                     s,
-                    "| {x} | swell median (ms) | min–max (ms) | paper (ms) | swell / paper | swell / row 1 | \
-                     paper / row 1 |"
+                    "{head} paper (ms) | swell / paper | swell / row 1 | paper / row 1 |\n\
+                     |---|---:|---:|---:|---:|---:|---:|---:|"
                 );
-                let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
                 for (i, p) in series.points.iter().enumerate() {
                     let paper_ms = p.paper.map(|v| v * 1e3);
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {} | {} | {} | {:.2} | {} |",
-                        p.label,
-                        ms(p.swell.median_ms),
-                        spread(&p.swell),
-                        opt(paper_ms, |v| ms(v)),
+                        "{} {} | {} | {:.2} | {} |",
+                        cells(p),
+                        opt(paper_ms, ms),
                         opt(paper_ms, |v| format!("{:.3}", p.swell.median_ms / v)),
                         series.swell_relative(i),
                         opt(series.paper_relative(i), |v| format!("{v:.2}")),
@@ -160,18 +160,15 @@ impl Report {
                 let paper_col = if unit == PaperUnit::Ticks { "paper (ticks)" } else { "paper" };
                 let _ = writeln!(
                     s,
-                    "| {x} | swell median (ms) | min–max (ms) | {paper_col} | swell / row 1 | paper / row 1 | \
-                     growth ratio |"
+                    "{head} {paper_col} | swell / row 1 | paper / row 1 | growth ratio |\n\
+                     |---|---:|---:|---:|---:|---:|---:|---:|"
                 );
-                let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
                 for (i, p) in series.points.iter().enumerate() {
                     let (sr, pr) = (series.swell_relative(i), series.paper_relative(i));
                     let _ = writeln!(
                         s,
-                        "| {} | {} | {} | {} | {sr:.2} | {} | {} |",
-                        p.label,
-                        ms(p.swell.median_ms),
-                        spread(&p.swell),
+                        "{} {} | {sr:.2} | {} | {} |",
+                        cells(p),
                         opt(p.paper, |v| format!("{v:.0}")),
                         opt(pr, |v| format!("{v:.2}")),
                         opt(pr, |v| format!("{:.2}", sr / v)),
@@ -243,9 +240,9 @@ mod tests {
     fn ticks_compare_growth_and_seconds_compare_time() {
         let md = report(PaperUnit::Ticks).markdown();
         // Row 2: swell grew 3x, the paper 1.5x, so swell's growth is twice the paper's.
-        assert!(md.contains("| 2 | 6.00 | 6.00–6.00 | 150 | 3.00 | 1.50 | 2.00 |"), "{md}");
+        assert!(md.contains("| 2 | 6.00 | 6.00–6.00 | – | 150 | 3.00 | 1.50 | 2.00 |"), "{md}");
         let md = report(PaperUnit::Seconds).markdown();
         // 6 ms against the paper's 150 s.
-        assert!(md.contains("| 2 | 6.00 | 6.00–6.00 | 150000 | 0.000 | 3.00 | 1.50 |"), "{md}");
+        assert!(md.contains("| 2 | 6.00 | 6.00–6.00 | – | 150000 | 0.000 | 3.00 | 1.50 |"), "{md}");
     }
 }

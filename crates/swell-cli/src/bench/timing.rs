@@ -52,6 +52,11 @@ pub struct Stats {
     pub q3_ms: f64,
     /// Slowest run.
     pub max_ms: f64,
+    /// Mean CPU time of the whole process (all threads, user + system) per timed run, where the OS
+    /// reports it (Linux, 10 ms resolution over all runs together; `None` below 50 ms in all). On a loaded machine it shows
+    /// the work done when wall-clock time is inflated by waiting; above the wall time it shows
+    /// parallel work.
+    pub cpu_ms: Option<f64>,
 }
 
 /// Runs `f` `reps.warmup` times untimed, then times it between `min_runs` and `max_runs` times.
@@ -61,6 +66,7 @@ pub fn measure(reps: Repetitions, mut f: impl FnMut() -> Result<()>) -> Result<S
         f()?;
     }
     let budget = Duration::from_secs_f64(reps.budget_s);
+    let cpu_before = process_cpu_ms();
     let started = Instant::now();
     let mut samples = Vec::with_capacity(reps.max_runs as usize);
     while samples.len() < reps.min_runs.max(1) as usize
@@ -70,7 +76,27 @@ pub fn measure(reps: Repetitions, mut f: impl FnMut() -> Result<()>) -> Result<S
         f()?;
         samples.push(t.elapsed().as_secs_f64() * 1e3);
     }
-    Ok(summarize(&mut samples))
+    let cpu_ms = match (cpu_before, process_cpu_ms()) {
+        // Below 5 ticks in all the error of the 10 ms clock exceeds 20%: report nothing.
+        (Some(a), Some(b)) if b - a >= MIN_CPU_MS => Some((b - a) / samples.len() as f64),
+        _ => None,
+    };
+    Ok(Stats { cpu_ms, ..summarize(&mut samples) })
+}
+
+/// Least total CPU time over a measurement's runs for [`Stats::cpu_ms`] to be reported, ms.
+const MIN_CPU_MS: f64 = 50.0;
+
+/// CPU time used so far by this process, all threads, user + system, in ms: fields 14 and 15 of
+/// /proc/self/stat (proc(5)), in clock ticks of 1/100 s (Linux's USER_HZ on every architecture).
+fn process_cpu_ms() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The command name (field 2) is in parentheses and may contain spaces: count from the last ')'.
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // `rest` starts at field 3, so fields 14 and 15 are at 11 and 12.
+    let ticks: u64 = fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?;
+    Some(ticks as f64 * 10.0)
 }
 
 /// Median, quartiles and range of `samples` (at least one), which get sorted.
@@ -83,6 +109,7 @@ pub fn summarize(samples: &mut [f64]) -> Stats {
         q1_ms: quantile(samples, 0.25),
         q3_ms: quantile(samples, 0.75),
         max_ms: samples[samples.len() - 1],
+        cpu_ms: None,
     }
 }
 
@@ -121,5 +148,24 @@ mod tests {
         assert_eq!(s.runs, 2);
         let e = measure(Repetitions::QUICK, || Err(swell::Error::invalid("x", "boom")));
         assert!(e.is_err());
+    }
+
+    #[test]
+    fn cpu_time_counts_the_work_done() {
+        if process_cpu_ms().is_none() {
+            return; // not Linux
+        }
+        // A fixed amount of work (at least ~25 ms of CPU even at 4 GHz, 75 ms over the 3 runs), however long a loaded
+        // machine makes it take in wall time.
+        let work = || {
+            let mut x = 0u64;
+            for _ in 0..100_000_000u64 {
+                x = std::hint::black_box(x.wrapping_add(1));
+            }
+        };
+        let busy = measure(Repetitions::exactly(3), || Ok(work())).unwrap();
+        // Other tests run in threads of this process and only add to its CPU time, so bound from
+        // below only.
+        assert!(busy.cpu_ms.unwrap() >= 5.0, "{busy:?}");
     }
 }
