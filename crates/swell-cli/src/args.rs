@@ -72,7 +72,7 @@ pub struct BenchArgs {
     /// Directory for the results (created if missing): EXPERIMENT.md, .json and .png.
     #[arg(long, value_name = "DIR", default_value = "bench-results")]
     pub out: PathBuf,
-    /// Fewer runs per row (shapes, not figures): `swell bench all --quick` takes a few minutes.
+    /// Fewer runs per row (shapes, not figures): `swell bench all --quick` takes about half a minute on 2 cores.
     #[arg(long)]
     pub quick: bool,
     /// Exactly N timed runs per row and no warm-up (for tests).
