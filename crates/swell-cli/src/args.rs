@@ -23,6 +23,8 @@ pub enum Command {
     /// Generate a terrain and write it as a 16-bit grayscale PNG heightmap plus a sidecar
     /// (`FILE.toml`) with its height scale, offset and extent.
     Terrain(TerrainArgs),
+    /// Time the papers' experiments on this machine; write Markdown, JSON and PNG results.
+    Bench(BenchArgs),
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.
@@ -88,4 +90,22 @@ pub struct TerrainArgs {
     /// Worker threads, 0 = one per core. The heightmap does not depend on it.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: u32,
+}
+
+/// `swell bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// grid-size, polygons, waves (paper 000); zbuffer-threads, zbuffer-sizes (paper 001); realtime;
+    /// or all.
+    #[arg(value_name = "EXPERIMENT")]
+    pub experiment: String,
+    /// Directory for the results (created if missing): EXPERIMENT.md, .json and .png.
+    #[arg(long, value_name = "DIR", default_value = "bench-results")]
+    pub out: PathBuf,
+    /// Fewer runs per row (shapes, not figures): `swell bench all --quick` takes about half a minute on 2 cores.
+    #[arg(long)]
+    pub quick: bool,
+    /// Exactly N timed runs per row and no warm-up (for tests).
+    #[arg(long, value_name = "N", hide = true)]
+    pub runs: Option<u32>,
 }

@@ -4,6 +4,7 @@
 //! the commands themselves live in [`cmd`], one file each.
 
 mod args;
+mod bench;
 mod cmd;
 
 use std::process::ExitCode;

@@ -1,5 +1,6 @@
 //! One file per subcommand, plus what they share: loading a scene and building a thread pool.
 
+mod bench;
 mod presets;
 mod render;
 mod terrain;
@@ -15,6 +16,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Render(a) => render::run(a),
         Command::Presets => presets::run(),
         Command::Terrain(a) => terrain::run(a),
+        Command::Bench(a) => bench::run(a),
     }
 }
 

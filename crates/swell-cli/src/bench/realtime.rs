@@ -1,0 +1,52 @@
+//! `realtime`: frames per second of every built-in preset at 1280 x 720 (paper 000's goal: a large
+//! sea in real time on the CPU only).
+
+use swell::render::Renderer;
+use swell::scene::{preset, World, PRESETS};
+use swell::Result;
+
+use super::report::{PaperUnit, PlotKind, Point, Report, Series};
+use super::timing::measure;
+use super::Context;
+
+/// Image size, pixels.
+pub const IMAGE: (u32, u32) = (1280, 720);
+/// Simulated time between frames, s.
+const FRAME_DT: f64 = 1.0 / 30.0;
+
+/// Times `World::update` + `Renderer::render_size` for each preset.
+pub fn realtime(ctx: &Context) -> Result<Report> {
+    let mut points = Vec::new();
+    for (i, p) in PRESETS.iter().enumerate() {
+        ctx.progress(p.name);
+        let mut world = World::new(preset(p.name)?)?;
+        let mut renderer = Renderer::new();
+        let mut t = 0.0;
+        let swell = measure(ctx.reps, || {
+            t += FRAME_DT;
+            world.update(t)?;
+            renderer.render_size(&world, IMAGE.0, IMAGE.1);
+            Ok(())
+        })?;
+        points.push(Point { x: i as f64, label: p.name.to_string(), swell, paper: None });
+    }
+    Ok(Report {
+        experiment: "realtime",
+        title: "frames per second of each preset".into(),
+        source: "paper 000's real-time goal; no table".into(),
+        setup: vec![
+            format!(
+                "Frame = `World::update` + `Renderer::render_size` at {}x{} pixels, all threads; each preset as \
+                 shipped (its own grid, waves and shading).",
+                IMAGE.0, IMAGE.1
+            ),
+            "Frames per second = 1000 / median frame time in ms.".into(),
+        ],
+        x_label: "preset".into(),
+        paper_unit: PaperUnit::None,
+        plot: PlotKind::Fps,
+        series: vec![Series { name: String::new(), points }],
+        machine: ctx.machine.clone(),
+        repetitions: ctx.reps,
+    })
+}
