@@ -168,11 +168,10 @@ mod tests {
         m.evaluate(&grid, 0.7, &mut p, &mut n);
         let eps = 1e-2;
         for (v, nv) in p.iter().zip(&n).step_by(3) {
-            assert_eq!(m.height_at(v.x, v.z, 0.7), v.y);
+            assert!((m.height_at(v.x, v.z, 0.7) - v.y).abs() < 1e-5);
             let dx = (m.height_at(v.x + eps, v.z, 0.7) - m.height_at(v.x - eps, v.z, 0.7)) / (2.0 * eps);
             let dz = (m.height_at(v.x, v.z + eps, 0.7) - m.height_at(v.x, v.z - eps, 0.7)) / (2.0 * eps);
             assert!((*nv - Vec3::new(-dx, 1.0, -dz).normalize()).length() < 1e-3);
-            assert_eq!((v.x, v.z), (v.x, v.z));
         }
         let e = Airy::new(AiryParams {
             waves: vec![AiryWave { amplitude: 0.1, wavelength: -3.0, direction: Vec2::X, phase: 0.0 }],

@@ -13,9 +13,11 @@
 //! directions).
 //!
 //! The grid path is the hot loop of every Gerstner scene: rows go to rayon tasks, each row is
-//! processed in blocks of [`BLOCK`] vertices with the waves in the outer loop and
-//! [`fast_sin_cos`] in the inner loop, so the inner loop is branch-free arithmetic over arrays that
-//! the compiler vectorises.
+//! processed in blocks of [`BLOCK`] vertices with the waves in the outer loop. Per wave and block,
+//! [`fast_sin_cos`] gives the first [`LANES`] vertices; later vertices rotate those by the constant
+//! phase step along the row (resynchronised every block of 64), so the inner loop is branch-free
+//! arithmetic over arrays that the compiler vectorises. The grid agrees with the point query
+//! [`TrochoidalSum::sample`] to about 5e-6 of the amplitudes.
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -28,6 +30,9 @@ pub const MAX_TROCHOIDAL_WAVES: usize = 64;
 
 /// Vertices per block of the grid path: 8 accumulators of 64 f32 stay in L1.
 const BLOCK: usize = 64;
+
+/// Vertices whose sin/cos are computed directly at the start of each block (one AVX2 register).
+const LANES: usize = 8;
 
 /// One prepared wave: everything the inner loop needs, premultiplied.
 #[derive(Clone, Copy, Debug, Default)]
@@ -201,19 +206,36 @@ impl TrochoidalSum {
         let mut szz = [0.0f32; BLOCK];
         let mut cx = [0.0f32; BLOCK];
         let mut cz = [0.0f32; BLOCK];
+        let dx = grid.spacing().x;
         for (c, &ph) in self.coefficients.iter().zip(phases.iter()) {
-            // The same expression as `sample`, so the grid and the point query agree to the bit.
+            // Exact (polynomial) sin/cos for the first LANES vertices, the same expression as
+            // `sample`; each later group of LANES is the previous one rotated by the phase of LANES
+            // cells, k_x LANES dx: 6 operations instead of ~22, with the error of 7 rotations
+            // (about 5e-6 relative) instead of 6e-7.
             let row_phase = c.kz * z - ph;
-            for i in 0..BLOCK {
-                let (s, co) = fast_sin_cos(c.kx * xs[i] + row_phase);
-                ox[i] += c.hx * co;
-                oz[i] += c.hz * co;
-                oy[i] += c.a * s;
-                sxx[i] += c.sxx * s;
-                sxz[i] += c.sxz * s;
-                szz[i] += c.szz * s;
-                cx[i] += c.akx * co;
-                cz[i] += c.akz * co;
+            let (step_s, step_c) = fast_sin_cos(c.kx * dx * LANES as f32);
+            let mut s = [0.0f32; LANES];
+            let mut co = [0.0f32; LANES];
+            for l in 0..LANES {
+                (s[l], co[l]) = fast_sin_cos(c.kx * xs[l] + row_phase);
+            }
+            for g in 0..BLOCK / LANES {
+                for l in 0..LANES {
+                    let i = g * LANES + l;
+                    ox[i] += c.hx * co[l];
+                    oz[i] += c.hz * co[l];
+                    oy[i] += c.a * s[l];
+                    sxx[i] += c.sxx * s[l];
+                    sxz[i] += c.sxz * s[l];
+                    szz[i] += c.szz * s[l];
+                    cx[i] += c.akx * co[l];
+                    cz[i] += c.akz * co[l];
+                }
+                for l in 0..LANES {
+                    let (sn, cn) = (s[l] * step_c + co[l] * step_s, co[l] * step_c - s[l] * step_s);
+                    s[l] = sn;
+                    co[l] = cn;
+                }
             }
         }
         for (i, (p, nrm)) in positions.iter_mut().zip(normals.iter_mut()).enumerate() {
