@@ -20,7 +20,7 @@ pub mod reference;
 pub mod triangle;
 
 pub use framebuffer::Framebuffer;
-pub use pipeline::{draw, Cull, Fragment};
+pub use pipeline::{draw, draw_with, Cull, DrawScratch, Fragment};
 
 use glam::Vec4;
 

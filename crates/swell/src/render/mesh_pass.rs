@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use crate::error::{check_finite_vec, check_non_negative, Error, Result};
 use crate::mesh::TriangleMesh;
-use crate::raster::{draw, ClipVertex, Cull, Framebuffer};
+use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
 use crate::scene::Camera;
 use crate::shading::{Shading, SurfaceVarying};
 
@@ -73,6 +73,9 @@ pub struct MeshRenderer {
     colored: Vec<ClipVertex<Vec3>>,
     surface: Vec<ClipVertex<SurfaceVarying>>,
     faces: Vec<Vec3>,
+    draw_plain: DrawScratch<()>,
+    draw_colored: DrawScratch<Vec3>,
+    draw_surface: DrawScratch<SurfaceVarying>,
 }
 
 impl MeshRenderer {
@@ -117,7 +120,9 @@ impl MeshRenderer {
                     *c = light.shade(to_light, (b - a).cross(d - a).normalize_or_zero());
                 });
                 let faces = &self.faces;
-                draw(fb, &self.plain, &mesh.indices, Cull::None, &|f| faces[f.primitive as usize]);
+                draw_with(&mut self.draw_plain, fb, &self.plain, &mesh.indices, Cull::None, &|f| {
+                    faces[f.primitive as usize]
+                });
             }
             Shading::Gouraud => {
                 self.colored.resize(n_vertices, ClipVertex::default());
@@ -125,7 +130,7 @@ impl MeshRenderer {
                     let (p, n) = (mesh.positions[i], mesh.normals[i]);
                     *cv = ClipVertex { position: clip(p), varying: light.shade(to_light, n) };
                 });
-                draw(fb, &self.colored, &mesh.indices, Cull::None, &|f| f.varying);
+                draw_with(&mut self.draw_colored, fb, &self.colored, &mesh.indices, Cull::None, &|f| f.varying);
             }
             Shading::Phong | Shading::BlinnPhong => {
                 self.surface.resize(n_vertices, ClipVertex::default());
@@ -134,7 +139,7 @@ impl MeshRenderer {
                     *cv =
                         ClipVertex { position: clip(p), varying: SurfaceVarying { position: p, normal: n, foam: 0.0 } };
                 });
-                draw(fb, &self.surface, &mesh.indices, Cull::None, &|f| {
+                draw_with(&mut self.draw_surface, fb, &self.surface, &mesh.indices, Cull::None, &|f| {
                     light.shade(to_light, f.varying.normal.normalize_or_zero())
                 });
             }

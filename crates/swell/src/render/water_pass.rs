@@ -8,7 +8,7 @@ use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::FrameContext;
-use crate::raster::{draw as raster_draw, ClipVertex, Cull, Framebuffer};
+use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
 use crate::scene::WaterBody;
 use crate::shading::{shade_water, FlatBottom, NoBottom, Seabed, Shading, SurfaceVarying, WaterLook};
 
@@ -17,6 +17,9 @@ use crate::shading::{shade_water, FlatBottom, NoBottom, Seabed, Shading, Surface
 pub struct Scratch {
     plain: Vec<ClipVertex<()>>,
     surface: Vec<ClipVertex<SurfaceVarying>>,
+    draw_plain: DrawScratch<()>,
+    draw_colored: DrawScratch<Vec3>,
+    draw_surface: DrawScratch<SurfaceVarying>,
 }
 
 /// Draws `water` into `fb`, reusing `clip_vertices`, `face_colors` and `scratch`.
@@ -57,7 +60,9 @@ pub fn draw(
                 *c = shade_water(env, &look, lobe, (a + b + d) / 3.0, n, f);
             });
             let faces = &*face_colors;
-            raster_draw(fb, &scratch.plain, &mesh.indices, Cull::None, &|f| faces[f.primitive as usize]);
+            draw_with(&mut scratch.draw_plain, fb, &scratch.plain, &mesh.indices, Cull::None, &|f| {
+                faces[f.primitive as usize]
+            });
         }
         Shading::Gouraud => {
             clip_vertices.resize(mesh.positions.len(), ClipVertex::default());
@@ -65,7 +70,7 @@ pub fn draw(
                 let (p, n) = (mesh.positions[i], mesh.normals[i]);
                 *cv = ClipVertex { position: clip(p), varying: shade_water(env, &look, lobe, p, n, foam(i)) };
             });
-            raster_draw(fb, clip_vertices, &mesh.indices, Cull::None, &|f| f.varying);
+            draw_with(&mut scratch.draw_colored, fb, clip_vertices, &mesh.indices, Cull::None, &|f| f.varying);
         }
         Shading::Phong | Shading::BlinnPhong => {
             scratch.surface.resize(mesh.positions.len(), ClipVertex::default());
@@ -74,7 +79,7 @@ pub fn draw(
                 *cv =
                     ClipVertex { position: clip(p), varying: SurfaceVarying { position: p, normal: n, foam: foam(i) } };
             });
-            raster_draw(fb, &scratch.surface, &mesh.indices, Cull::None, &|f| {
+            draw_with(&mut scratch.draw_surface, fb, &scratch.surface, &mesh.indices, Cull::None, &|f| {
                 let v = &f.varying;
                 shade_water(env, &look, lobe, v.position, v.normal.normalize_or(Vec3::Y), v.foam)
             });
