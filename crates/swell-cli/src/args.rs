@@ -63,6 +63,35 @@ pub struct RenderArgs {
     /// depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<u32>,
+    /// Shading model of the water (scene mode) or of the mesh (--obj mode): flat, gouraud, phong
+    /// or blinn-phong (default: the scene's water.material.shading; flat with --obj).
+    #[arg(long, value_name = "MODEL")]
+    pub shading: Option<String>,
+    /// Draw the water's triangle edges over the image (scene's render.wireframe).
+    #[arg(long)]
+    pub wireframe: bool,
+    /// Draw the water's vertex normals as short lines (scene's render.normals).
+    #[arg(long)]
+    pub normals: bool,
+    /// Supersampling anti-aliasing: N x N samples per pixel, N in [1, 4], box-filtered in linear
+    /// colour (default: the scene's render.supersample).
+    #[arg(long, value_name = "N")]
+    pub supersample: Option<u32>,
+    /// Comparison mode: render this Wavefront OBJ mesh (v, vn, f) instead of a scene; needs
+    /// --camera. Writes the framebuffer without gamma encoding, as OpenGL's RGBA8 would hold it.
+    #[arg(long, value_name = "MESH.obj", group = "SceneSource", requires = "camera")]
+    pub obj: Option<PathBuf>,
+    /// With --obj: camera JSON {"eye","target","up","fov_y_deg","near","far","width","height"}.
+    #[arg(long, value_name = "CAMERA.json", requires = "obj")]
+    pub camera: Option<PathBuf>,
+    /// With --obj: directional light JSON {"dir","color","ambient","base_color","background"}
+    /// (linear colours; dir is where the light travels); default a white light from above.
+    #[arg(long, value_name = "LIGHT.json", requires = "obj")]
+    pub light: Option<PathBuf>,
+    /// With --obj: render N times and print the median render time as {"median_ms": ...}
+    /// (file loading and writing excluded). N in [1, 10000].
+    #[arg(long, value_name = "N", requires = "obj")]
+    pub repeat: Option<u32>,
 }
 
 /// `swell terrain`.

@@ -1,11 +1,17 @@
-//! `swell render`: one frame to PNG, or `--frames N` to an animated GIF.
+//! `swell render`: one frame to PNG, or `--frames N` to an animated GIF; or, with `--obj`, one
+//! mesh seen by one camera, for comparison with an OpenGL renderer.
 
 use std::path::Path;
+use std::time::Instant;
 
+use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::{Map, Value};
 use swell::export::{write_gif, write_png};
-use swell::render::Renderer;
-use swell::scene::{World, MAX_IMAGE_SIDE};
+use swell::mesh::parse_obj;
+use swell::render::{MeshLight, MeshRenderer, Renderer};
+use swell::scene::{Camera, World, MAX_IMAGE_SIDE};
+use swell::shading::Shading;
 use swell::{Error, Result};
 
 use super::{load_scene, thread_pool};
@@ -20,6 +26,12 @@ enum Output {
 }
 
 pub fn run(a: RenderArgs) -> Result<()> {
+    if a.obj.is_some() {
+        return run_mesh(&a);
+    }
+    if a.repeat.is_some() {
+        return Err(Error::invalid("--repeat", "times the --obj comparison mode only"));
+    }
     let output = resolve_output(&a)?;
     if !a.time.is_finite() {
         return Err(Error::out_of_range("--time", a.time, "finite seconds"));
@@ -29,6 +41,21 @@ pub fn run(a: RenderArgs) -> Result<()> {
         let (w, h) = parse_size(size)?;
         scene.render.width = w;
         scene.render.height = h;
+    }
+    if let Some(name) = &a.shading {
+        let shading = Shading::parse(name, "--shading")?;
+        if let Some(w) = &mut scene.water {
+            w.material.shading = shading;
+        }
+    }
+    scene.render.wireframe |= a.wireframe;
+    scene.render.normals |= a.normals;
+    if let Some(n) = a.supersample {
+        scene.render.supersample = n;
+        scene.render.validate("render").map_err(|e| match e {
+            Error::OutOfRange { value, range, .. } => Error::OutOfRange { key: "--supersample".into(), value, range },
+            other => other,
+        })?;
     }
     let threads = a.threads.unwrap_or(scene.render.threads);
     let pool = thread_pool(threads)?;
@@ -128,4 +155,157 @@ fn parse_size(s: &str) -> Result<(u32, u32)> {
         }
     }
     Ok((w, h))
+}
+
+/// `--obj MESH --camera CAMERA.json [--light LIGHT.json] [--shading M] [--repeat N]`.
+fn run_mesh(a: &RenderArgs) -> Result<()> {
+    let obj = a.obj.as_deref().expect("checked by the caller");
+    let camera_path =
+        a.camera.as_deref().ok_or_else(|| Error::invalid("--camera", "--obj needs --camera CAMERA.json"))?;
+    for (flag, given) in [
+        ("--preset", a.source.preset.is_some()),
+        ("--scene", a.source.scene.is_some()),
+        ("--frames", a.frames.is_some()),
+        ("--size", a.size.is_some()),
+        ("--wireframe", a.wireframe),
+        ("--normals", a.normals),
+        ("--supersample", a.supersample.is_some()),
+    ] {
+        if given {
+            return Err(Error::invalid(flag, "does not apply to the --obj comparison mode"));
+        }
+    }
+    match a.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("png") => {}
+        _ => return Err(Error::invalid("--out", format!("{} must end in .png", a.out.display()))),
+    }
+    check_output_dir(&a.out)?;
+    let repeat = a.repeat.unwrap_or(1);
+    if !(1..=MAX_FRAMES).contains(&repeat) {
+        return Err(Error::out_of_range("--repeat", repeat, format!("[1, {MAX_FRAMES}]")));
+    }
+    let shading = match &a.shading {
+        Some(name) => Shading::parse(name, "--shading")?,
+        None => Shading::Flat,
+    };
+    let (camera, width, height) = read_camera(camera_path)?;
+    let light = match &a.light {
+        Some(path) => read_light(path)?,
+        None => MeshLight::default(),
+    };
+    let text = read_text(obj)?;
+    let mesh = parse_obj(&text, &obj.display().to_string())?;
+    let pool = thread_pool(a.threads.unwrap_or(0))?;
+    let mut renderer = MeshRenderer::new();
+    let mut times = Vec::with_capacity(repeat as usize);
+    let mut rgba = Vec::new();
+    pool.install(|| {
+        for _ in 0..repeat {
+            let start = Instant::now();
+            renderer.render(&mesh, &camera, width, height, &light, shading);
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+        // No gamma: the bytes are what an OpenGL RGBA8 framebuffer holds, round(255 c).
+        renderer.render(&mesh, &camera, width, height, &light, shading).encode_rgba8(1.0, Some(1.0), &mut rgba);
+    });
+    write_png(&a.out, width, height, &rgba)?;
+    if a.repeat.is_some() {
+        times.sort_by(f64::total_cmp);
+        let n = times.len();
+        let median = if n % 2 == 1 { times[n / 2] } else { 0.5 * (times[n / 2 - 1] + times[n / 2]) };
+        println!("{}", serde_json::json!({ "median_ms": median }));
+    } else {
+        eprintln!("wrote {}", a.out.display());
+    }
+    Ok(())
+}
+
+fn read_text(path: &Path) -> Result<String> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    String::from_utf8(bytes)
+        .map_err(|_| Error::Parse { path: path.display().to_string(), message: "not UTF-8 text".into() })
+}
+
+/// Reads a JSON object, refusing keys outside `allowed`.
+fn read_json_object(path: &Path, allowed: &[&str]) -> Result<Map<String, Value>> {
+    let parse_err = |message: String| Error::Parse { path: path.display().to_string(), message };
+    let value: Value = serde_json::from_str(&read_text(path)?).map_err(|e| parse_err(e.to_string()))?;
+    let Value::Object(map) = value else { return Err(parse_err("must be a JSON object {...}".into())) };
+    if let Some(k) = map.keys().find(|k| !allowed.contains(&k.as_str())) {
+        return Err(parse_err(format!("unknown key `{k}`; valid: {}", allowed.join(", "))));
+    }
+    Ok(map)
+}
+
+/// A number, `[x, y, z]` or `[r, g, b, a]` (alpha ignored); a single number `c` means `[c, c, c]`
+/// where `scalar_ok`.
+fn json_vec3(map: &Map<String, Value>, key: &str, file: &Path, scalar_ok: bool) -> Result<Option<Vec3>> {
+    let bad = || Error::Parse {
+        path: file.display().to_string(),
+        message: format!("{key} must be [x, y, z]{}", if scalar_ok { " or a number" } else { "" }),
+    };
+    match map.get(key) {
+        None => Ok(None),
+        Some(Value::Number(n)) if scalar_ok => Ok(Some(Vec3::splat(n.as_f64().ok_or_else(bad)? as f32))),
+        Some(Value::Array(a)) if a.len() == 3 || a.len() == 4 => {
+            let c: Vec<f32> = a.iter().map(|v| v.as_f64().map(|f| f as f32)).collect::<Option<_>>().ok_or_else(bad)?;
+            Ok(Some(Vec3::new(c[0], c[1], c[2])))
+        }
+        Some(_) => Err(bad()),
+    }
+}
+
+fn json_number(map: &Map<String, Value>, key: &str, file: &Path) -> Result<Option<f64>> {
+    match map.get(key) {
+        None => Ok(None),
+        Some(v) => v.as_f64().map(Some).ok_or_else(|| Error::Parse {
+            path: file.display().to_string(),
+            message: format!("{key} must be a number"),
+        }),
+    }
+}
+
+fn read_camera(path: &Path) -> Result<(Camera, u32, u32)> {
+    let keys = ["eye", "target", "up", "fov_y_deg", "near", "far", "width", "height"];
+    let map = read_json_object(path, &keys)?;
+    let missing = |k: &str| Error::Parse { path: path.display().to_string(), message: format!("{k} is missing") };
+    let mut camera = Camera {
+        eye: json_vec3(&map, "eye", path, false)?.ok_or_else(|| missing("eye"))?,
+        target: json_vec3(&map, "target", path, false)?.ok_or_else(|| missing("target"))?,
+        up: Vec3::Y,
+        fov_y_deg: 45.0,
+        near: 0.1,
+        far: 5000.0,
+    };
+    if let Some(up) = json_vec3(&map, "up", path, false)? {
+        camera.up = up;
+    }
+    for (key, field) in [("fov_y_deg", &mut camera.fov_y_deg), ("near", &mut camera.near), ("far", &mut camera.far)] {
+        if let Some(v) = json_number(&map, key, path)? {
+            *field = v as f32;
+        }
+    }
+    camera.validate("camera")?;
+    let side = |k: &str| -> Result<u32> {
+        let v = json_number(&map, k, path)?.ok_or_else(|| missing(k))?;
+        if v.fract() != 0.0 || !(1.0..=MAX_IMAGE_SIDE as f64).contains(&v) {
+            return Err(Error::out_of_range(format!("camera.{k}"), v, format!("[1, {MAX_IMAGE_SIDE}] (whole pixels)")));
+        }
+        Ok(v as u32)
+    };
+    Ok((camera, side("width")?, side("height")?))
+}
+
+fn read_light(path: &Path) -> Result<MeshLight> {
+    let map = read_json_object(path, &["dir", "color", "ambient", "base_color", "background"])?;
+    let d = MeshLight::default();
+    let light = MeshLight {
+        dir: json_vec3(&map, "dir", path, false)?.unwrap_or(d.dir),
+        color: json_vec3(&map, "color", path, true)?.unwrap_or(d.color),
+        ambient: json_vec3(&map, "ambient", path, true)?.unwrap_or(d.ambient),
+        base_color: json_vec3(&map, "base_color", path, true)?.unwrap_or(d.base_color),
+        background: json_vec3(&map, "background", path, true)?.unwrap_or(d.background),
+    };
+    light.validate("light")?;
+    Ok(light)
 }

@@ -1,5 +1,8 @@
-//! Surface meshes: the regular triangle grid that wave models displace and the renderer draws.
+//! Surface meshes: the regular triangle grid that wave models displace and the renderer draws, and
+//! triangle meshes read from OBJ files.
 
+mod obj;
 mod surface_mesh;
 
+pub use obj::{parse_obj, TriangleMesh};
 pub use surface_mesh::SurfaceMesh;

@@ -78,4 +78,51 @@ impl Framebuffer {
             },
         );
     }
+
+    /// Makes `self` the box-filtered reduction of `src` by `factor` per axis: each pixel is the
+    /// mean of a `factor` x `factor` block of linear colours (averaging after gamma encoding would
+    /// darken edges), and the nearest depth of the block. `self` is resized to `src`'s size
+    /// divided by `factor` (rounded down; `factor` >= 1).
+    pub fn downsample_from(&mut self, src: &Framebuffer, factor: u32) {
+        let factor = factor.max(1);
+        self.resize(src.width / factor, src.height / factor);
+        let (w, f) = (self.width as usize, factor as usize);
+        if w == 0 {
+            return;
+        }
+        let sw = src.width as usize;
+        let scale = 1.0 / (f * f) as f32;
+        self.color.par_chunks_mut(w).zip(self.depth.par_chunks_mut(w)).enumerate().for_each(|(y, (row, drow))| {
+            for x in 0..w {
+                let (mut sum, mut near) = (Vec3::ZERO, 1.0f32);
+                for sy in y * f..(y + 1) * f {
+                    let base = sy * sw + x * f;
+                    for i in base..base + f {
+                        sum += src.color[i];
+                        near = near.min(src.depth[i]);
+                    }
+                }
+                row[x] = sum * scale;
+                drow[x] = near;
+            }
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn downsampling_averages_linear_colour_in_blocks() {
+        let mut src = Framebuffer::new(4, 2);
+        src.color = (0..8).map(|i| Vec3::splat(i as f32)).collect();
+        src.depth[5] = 0.25;
+        let mut dst = Framebuffer::new(1, 1);
+        dst.downsample_from(&src, 2);
+        assert_eq!((dst.width(), dst.height()), (2, 1));
+        // Blocks {0, 1, 4, 5} and {2, 3, 6, 7}.
+        assert_eq!(dst.color, vec![Vec3::splat(2.5), Vec3::splat(4.5)]);
+        assert_eq!(dst.depth, vec![0.25, 1.0]);
+    }
 }

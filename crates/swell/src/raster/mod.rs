@@ -6,19 +6,21 @@
 //! 1. [`clip`]: homogeneous clipping against the near and far planes and a guard band;
 //! 2. [`triangle`]: setup in 24.8 fixed point, edge functions with the top-left fill rule;
 //! 3. [`pipeline`]: setup in parallel, binning into horizontal bands, bands rasterized in parallel;
-//! 4. [`framebuffer`]: linear colour and depth, encoded to RGBA8 at the end.
+//! 4. [`framebuffer`]: linear colour and depth, encoded to RGBA8 at the end;
+//! 5. [`line`]: depth-tested lines for overlays.
 //!
 //! Each pixel belongs to exactly one band and each band draws its triangles in submission order, so
 //! the image is bit-identical for any number of threads.
 
 pub mod clip;
 mod framebuffer;
+pub mod line;
 mod pipeline;
 pub mod reference;
 pub mod triangle;
 
 pub use framebuffer::Framebuffer;
-pub use pipeline::{draw, Cull, Fragment};
+pub use pipeline::{draw, draw_with, Cull, DrawScratch, Fragment};
 
 use glam::Vec4;
 

@@ -1,15 +1,27 @@
 //! The draw call: vertex data in, shaded pixels in a [`Framebuffer`] out.
+//!
+//! Three parallel stages, each deterministic:
+//! 1. every vertex is classified against the clip planes and, when inside, projected to window
+//!    space once (a grid vertex is shared by six triangles);
+//! 2. triangles are set up in chunks of [`SETUP_CHUNK`], each chunk binning its own triangles
+//!    into bands (parallel binning: no serial pass over all triangles);
+//! 3. bands are rasterized in parallel, each walking the chunks in order, so every pixel sees its
+//!    triangles in submission order whatever the number of threads.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::clip::{clip_triangle, outcode};
-use super::triangle::{setup, SetupTriangle};
+use super::triangle::{setup, setup_window, to_window, SetupTriangle, WindowVertex};
 use super::{ClipVertex, Framebuffer, Varying};
 
 /// Rows per band: each band is one parallel task. 16 rows of a 1280-wide image (80 KiB of colour)
 /// stay in a core's L2 cache while its triangles are drawn.
 const BAND_ROWS: u32 = 16;
+
+/// Triangles per setup task: large enough to amortise the task and its bins, small enough to
+/// balance.
+const SETUP_CHUNK: usize = 8192;
 
 /// Which triangles to skip.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -34,8 +46,26 @@ pub struct Fragment<V> {
     pub y: u32,
 }
 
+/// Buffers of one draw call kept between calls, so that steady-state frames do not allocate.
+pub struct DrawScratch<V> {
+    window: Vec<(u8, WindowVertex)>,
+    chunks: Vec<Chunk<V>>,
+}
+
+impl<V> Default for DrawScratch<V> {
+    fn default() -> Self {
+        Self { window: Vec::new(), chunks: Vec::new() }
+    }
+}
+
+/// One setup task's triangles and, per band, the indices of those that touch it.
+struct Chunk<V> {
+    triangles: Vec<SetupTriangle<V>>,
+    bins: Vec<Vec<u32>>,
+}
+
 /// Draws indexed triangles into `target` with a depth test (less-than), shading each visible
-/// pixel with `shader`, which returns linear RGB.
+/// pixel with `shader`, which returns linear RGB. Allocates its buffers; [`draw_with`] reuses them.
 ///
 /// `vertices` are in clip space; triangles are clipped, culled per `cull`, set up in parallel,
 /// binned into bands and rasterized one band per task. The output does not depend on the number
@@ -45,83 +75,108 @@ where
     V: Varying,
     S: Fn(&Fragment<V>) -> Vec3 + Sync,
 {
+    draw_with(&mut DrawScratch::default(), target, vertices, indices, cull, shader)
+}
+
+/// [`draw`] with caller-owned scratch buffers.
+pub fn draw_with<V, S>(
+    scratch: &mut DrawScratch<V>,
+    target: &mut Framebuffer,
+    vertices: &[ClipVertex<V>],
+    indices: &[u32],
+    cull: Cull,
+    shader: &S,
+) where
+    V: Varying,
+    S: Fn(&Fragment<V>) -> Vec3 + Sync,
+{
     let (width, height) = (target.width(), target.height());
     if width == 0 || height == 0 {
         return;
     }
-    let triangles = setup_all(vertices, indices, width, height, cull == Cull::Back);
-    let bands = bin(&triangles, height);
+    project_vertices(&mut scratch.window, vertices, width, height);
+    setup_and_bin(scratch, vertices, indices, width, height, cull == Cull::Back);
+    let chunks = &scratch.chunks;
     let row = width as usize;
     target
         .color
         .par_chunks_mut(row * BAND_ROWS as usize)
         .zip(target.depth.par_chunks_mut(row * BAND_ROWS as usize))
-        .zip(bands.par_iter())
         .enumerate()
-        .for_each(|(band, ((color, depth), tris))| {
+        .for_each(|(band, (color, depth))| {
             let y0 = band as u32 * BAND_ROWS;
             let y1 = (y0 + BAND_ROWS).min(height) - 1;
-            for &t in tris {
-                let tri = &triangles[t as usize];
-                tri.scan((y0, y1), |c| {
-                    let i = (c.y - y0) as usize * row + c.x as usize;
-                    if c.depth < depth[i] {
-                        depth[i] = c.depth;
-                        let frag =
-                            Fragment { varying: tri.interpolate(c.weights), primitive: tri.primitive, x: c.x, y: c.y };
-                        color[i] = shader(&frag);
-                    }
-                });
+            for chunk in chunks {
+                for &t in &chunk.bins[band] {
+                    let tri = &chunk.triangles[t as usize];
+                    tri.scan((y0, y1), |c| {
+                        let i = (c.y - y0) as usize * row + c.x as usize;
+                        let z = tri.depth(c.linear);
+                        if z < depth[i] {
+                            depth[i] = z;
+                            let varying = tri.interpolate(tri.perspective_weights(c.linear));
+                            color[i] = shader(&Fragment { varying, primitive: tri.primitive, x: c.x, y: c.y });
+                        }
+                    });
+                }
             }
         });
 }
 
-/// Triangles per setup task: large enough to amortise the task, small enough to balance.
-const SETUP_CHUNK: usize = 4096;
+/// Outcode and (for vertices inside every plane) window position of each vertex.
+fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[ClipVertex<V>], w: u32, h: u32) {
+    out.resize(vertices.len(), (0, WindowVertex::default()));
+    out.par_iter_mut().zip(vertices.par_iter()).with_min_len(4096).for_each(|(o, v)| {
+        let code = outcode(v.position);
+        *o = (code, if code == 0 { to_window(v.position, w, h) } else { WindowVertex::default() });
+    });
+}
 
-fn setup_all<V: Varying>(
+fn setup_and_bin<V: Varying>(
+    scratch: &mut DrawScratch<V>,
     vertices: &[ClipVertex<V>],
     indices: &[u32],
     width: u32,
     height: u32,
     cull_back: bool,
-) -> Vec<SetupTriangle<V>> {
-    let chunks: Vec<Vec<SetupTriangle<V>>> = indices
-        .par_chunks(3 * SETUP_CHUNK)
-        .enumerate()
-        .map(|(c, idx)| {
-            let mut out = Vec::with_capacity(idx.len() / 3);
-            for (k, t) in idx.chunks_exact(3).enumerate() {
-                let prim = (c * SETUP_CHUNK + k) as u32;
-                let tri = [vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize]];
-                let codes = tri.map(|v| outcode(v.position));
-                if codes[0] & codes[1] & codes[2] != 0 {
-                    continue; // wholly outside one plane
-                }
-                let crossed = codes[0] | codes[1] | codes[2];
-                if crossed == 0 {
-                    out.extend(setup(&tri, prim, width, height, cull_back));
-                    continue;
-                }
-                let poly = clip_triangle(tri, crossed);
-                for f in 1..poly.len.saturating_sub(1) {
-                    let fan = [poly.vertices[0], poly.vertices[f], poly.vertices[f + 1]];
-                    out.extend(setup(&fan, prim, width, height, cull_back));
-                }
-            }
-            out
-        })
-        .collect();
-    chunks.concat()
-}
-
-fn bin<V>(triangles: &[SetupTriangle<V>], height: u32) -> Vec<Vec<u32>> {
+) {
     let n_bands = height.div_ceil(BAND_ROWS) as usize;
-    let mut bands = vec![Vec::new(); n_bands];
-    for (i, t) in triangles.iter().enumerate() {
-        for b in (t.min_y / BAND_ROWS)..=(t.max_y / BAND_ROWS) {
-            bands[b as usize].push(i as u32);
+    let n_chunks = indices.len().div_ceil(3 * SETUP_CHUNK);
+    scratch.chunks.resize_with(n_chunks, || Chunk { triangles: Vec::new(), bins: Vec::new() });
+    let window = &scratch.window;
+    scratch.chunks.par_iter_mut().zip(indices.par_chunks(3 * SETUP_CHUNK)).enumerate().for_each(|(c, (chunk, idx))| {
+        chunk.triangles.clear();
+        chunk.bins.resize_with(n_bands, Vec::new);
+        chunk.bins.iter_mut().for_each(Vec::clear);
+        let Chunk { triangles, bins } = chunk;
+        let mut emit = |tri: Option<SetupTriangle<V>>| {
+            if let Some(t) = tri {
+                let i = triangles.len() as u32;
+                for b in (t.min_y / BAND_ROWS)..=(t.max_y / BAND_ROWS) {
+                    bins[b as usize].push(i);
+                }
+                triangles.push(t);
+            }
+        };
+        for (k, t) in idx.chunks_exact(3).enumerate() {
+            let prim = (c * SETUP_CHUNK + k) as u32;
+            let (a, b, d) = (window[t[0] as usize], window[t[1] as usize], window[t[2] as usize]);
+            if a.0 & b.0 & d.0 != 0 {
+                continue; // wholly outside one plane
+            }
+            let crossed = a.0 | b.0 | d.0;
+            let varying =
+                [vertices[t[0] as usize].varying, vertices[t[1] as usize].varying, vertices[t[2] as usize].varying];
+            if crossed == 0 {
+                emit(setup_window(&[a.1, b.1, d.1], varying, prim, width, height, cull_back));
+                continue;
+            }
+            let tri = [vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize]];
+            let poly = clip_triangle(tri, crossed);
+            for f in 1..poly.len.saturating_sub(1) {
+                let fan = [poly.vertices[0], poly.vertices[f], poly.vertices[f + 1]];
+                emit(setup(&fan, prim, width, height, cull_back));
+            }
         }
-    }
-    bands
+    });
 }

@@ -12,7 +12,9 @@ pub fn coverage(positions: &[Vec4], indices: &[u32], width: u32, height: u32) ->
     let n = (width * height) as usize;
     let (mut owner, mut count) = (vec![u32::MAX; n], vec![0u32; n]);
     let snap = |p: Vec4| {
-        let (nx, ny) = (p.x / p.w, p.y / p.w);
+        // The same arithmetic as the fast path's window transform, so both snap to the same grid.
+        let inv_w = 1.0 / p.w;
+        let (nx, ny) = (p.x * inv_w, p.y * inv_w);
         let sx = ((0.5 * nx + 0.5) * width as f32 * 256.0).round() as f64 / 256.0;
         let sy = ((0.5 - 0.5 * ny) * height as f32 * 256.0).round() as f64 / 256.0;
         (sx, sy)

@@ -10,19 +10,19 @@ use super::{ClipVertex, Varying};
 
 /// Fractional bits of the fixed-point screen coordinates.
 pub const SUBPIXEL_BITS: u32 = 8;
-const ONE: i64 = 1 << SUBPIXEL_BITS;
-const HALF: i64 = ONE / 2;
+const ONE: i32 = 1 << SUBPIXEL_BITS;
+const HALF: i32 = ONE / 2;
 
 /// A triangle ready to scan: fixed-point vertices, depth, 1/w and varyings.
 #[derive(Clone, Copy, Debug)]
 pub struct SetupTriangle<V> {
-    x: [i64; 3],
-    y: [i64; 3],
+    x: [i32; 3],
+    y: [i32; 3],
     z: [f32; 3],
     inv_w: [f32; 3],
     varying: [V; 3],
-    /// Twice the signed area in fixed point (after reordering, always > 0).
-    area2: i64,
+    /// 1 / (twice the signed area in fixed point); after reordering the area is always > 0.
+    inv_area: f32,
     /// Index of the triangle in the caller's index buffer.
     pub primitive: u32,
     /// Inclusive pixel bounds, already clamped to the viewport.
@@ -35,13 +35,39 @@ pub struct SetupTriangle<V> {
     pub max_y: u32,
 }
 
-/// Maps clip space to window coordinates: x right, y down (top row first), depth in [0, 1].
-fn to_window(p: Vec4, width: u32, height: u32) -> (f32, f32, f32, f32) {
+/// A vertex in window space: x and y in 24.8 fixed point (x right, y down), depth in [0, 1], 1/w.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WindowVertex {
+    /// Column in 1/256 pixel.
+    pub x: i32,
+    /// Row in 1/256 pixel, 0 at the top edge.
+    pub y: i32,
+    /// Window-space depth.
+    pub z: f32,
+    /// 1 / clip w.
+    pub inv_w: f32,
+}
+
+/// Rounds half away from zero with a cast: `f32::round` is a libm call on baseline x86-64, and
+/// this runs once per vertex. Identical results to `round`: from 2^23 on every f32 is already
+/// an integer (and adding 0.5 would round to even).
+#[inline]
+fn round_to_i32(v: f32) -> i32 {
+    if v.abs() >= 8_388_608.0 {
+        v as i32
+    } else {
+        (v + 0.5f32.copysign(v)) as i32
+    }
+}
+
+/// Maps a clip-space point inside the guard band to window coordinates: x right, y down (top row
+/// first), depth in [0, 1], snapped to 1/256 pixel.
+pub fn to_window(p: Vec4, width: u32, height: u32) -> WindowVertex {
     let inv_w = 1.0 / p.w;
     let (nx, ny, nz) = (p.x * inv_w, p.y * inv_w, p.z * inv_w);
     let sx = (0.5 * nx + 0.5) * width as f32;
     let sy = (0.5 - 0.5 * ny) * height as f32;
-    (sx, sy, 0.5 * nz + 0.5, inv_w)
+    WindowVertex { x: round_to_i32(sx * ONE as f32), y: round_to_i32(sy * ONE as f32), z: 0.5 * nz + 0.5, inv_w }
 }
 
 /// Sets up a triangle whose vertices are inside the clip volume (see [`super::clip`]).
@@ -56,13 +82,33 @@ pub fn setup<V: Varying>(
     cull_back: bool,
 ) -> Option<SetupTriangle<V>> {
     let w = tri.map(|v| to_window(v.position, width, height));
-    let snap = |c: f32| (c * ONE as f32).round() as i64;
-    let mut x = w.map(|p| snap(p.0));
-    let mut y = w.map(|p| snap(p.1));
-    let mut z = w.map(|p| p.2);
-    let mut inv_w = w.map(|p| p.3);
-    let mut varying = tri.map(|v| v.varying);
-    let area2 = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    setup_window(&w, [tri[0].varying, tri[1].varying, tri[2].varying], primitive, width, height, cull_back)
+}
+
+/// [`setup`] for vertices already in window space ([`to_window`]).
+#[inline]
+pub fn setup_window<V: Varying>(
+    w: &[WindowVertex; 3],
+    mut varying: [V; 3],
+    primitive: u32,
+    width: u32,
+    height: u32,
+    cull_back: bool,
+) -> Option<SetupTriangle<V>> {
+    let mut x = [w[0].x, w[1].x, w[2].x];
+    let mut y = [w[0].y, w[1].y, w[2].y];
+    // Bounds first: most triangles of a dense mesh that miss every pixel centre leave here.
+    let (min_xf, max_xf) = (x[0].min(x[1]).min(x[2]), x[0].max(x[1]).max(x[2]));
+    let (min_yf, max_yf) = (y[0].min(y[1]).min(y[2]), y[0].max(y[1]).max(y[2]));
+    // Pixel (px, py) has its centre at (px + 1/2, py + 1/2).
+    let first = |v: i32| (v - HALF + ONE - 1).div_euclid(ONE);
+    let last = |v: i32| (v - HALF).div_euclid(ONE);
+    let (x0, x1) = (first(min_xf).max(0), last(max_xf).min(width as i32 - 1));
+    let (y0, y1) = (first(min_yf).max(0), last(max_yf).min(height as i32 - 1));
+    if x0 > x1 || y0 > y1 {
+        return None;
+    }
+    let area2 = (x[1] - x[0]) as i64 * (y[2] - y[0]) as i64 - (y[1] - y[0]) as i64 * (x[2] - x[0]) as i64;
     if area2 == 0 {
         return None;
     }
@@ -71,6 +117,8 @@ pub fn setup<V: Varying>(
     if cull_back && !front {
         return None;
     }
+    let mut z = [w[0].z, w[1].z, w[2].z];
+    let mut inv_w = [w[0].inv_w, w[1].inv_w, w[2].inv_w];
     if area2 < 0 {
         x.swap(1, 2);
         y.swap(1, 2);
@@ -78,23 +126,13 @@ pub fn setup<V: Varying>(
         inv_w.swap(1, 2);
         varying.swap(1, 2);
     }
-    let (min_xf, max_xf) = (*x.iter().min()?, *x.iter().max()?);
-    let (min_yf, max_yf) = (*y.iter().min()?, *y.iter().max()?);
-    // Pixel (px, py) has its centre at (px + 1/2, py + 1/2).
-    let first = |v: i64| (v - HALF + ONE - 1).div_euclid(ONE);
-    let last = |v: i64| (v - HALF).div_euclid(ONE);
-    let (x0, x1) = (first(min_xf).max(0), last(max_xf).min(width as i64 - 1));
-    let (y0, y1) = (first(min_yf).max(0), last(max_yf).min(height as i64 - 1));
-    if x0 > x1 || y0 > y1 {
-        return None;
-    }
     Some(SetupTriangle {
         x,
         y,
         z,
         inv_w,
         varying,
-        area2: area2.abs(),
+        inv_area: 1.0 / area2.abs() as f32,
         primitive,
         min_x: x0 as u32,
         max_x: x1 as u32,
@@ -109,27 +147,44 @@ fn is_top_left(dx: i64, dy: i64) -> bool {
     (dy == 0 && dx > 0) || dy < 0
 }
 
-/// A covered pixel: its coordinates, depth and perspective-correct barycentric weights.
+/// A covered pixel: its coordinates and linear (screen-space) barycentric weights.
 #[derive(Clone, Copy, Debug)]
 pub struct Coverage {
     /// Column.
     pub x: u32,
     /// Row.
     pub y: u32,
-    /// Window-space depth in [0, 1].
-    pub depth: f32,
-    /// Perspective-correct weights of the three (reordered) vertices, summing to 1.
-    pub weights: [f32; 3],
+    /// Screen-space barycentric weights of the three (reordered) vertices, summing to 1. Depth
+    /// is affine in them ([`SetupTriangle::depth`]); varyings need
+    /// [`SetupTriangle::perspective_weights`].
+    pub linear: [f32; 3],
 }
 
 impl<V: Varying> SetupTriangle<V> {
-    /// The varyings at a pixel, from [`Coverage::weights`].
+    /// Window-space depth at a pixel: affine in screen space, so the linear weights give it.
+    #[inline]
+    pub fn depth(&self, l: [f32; 3]) -> f32 {
+        l[0] * self.z[0] + l[1] * self.z[1] + l[2] * self.z[2]
+    }
+
+    /// Perspective-correct weights from linear ones: each divided by its vertex's w and
+    /// renormalised (one division per pixel, only for pixels that pass the depth test).
+    #[inline]
+    pub fn perspective_weights(&self, l: [f32; 3]) -> [f32; 3] {
+        let p = [l[0] * self.inv_w[0], l[1] * self.inv_w[1], l[2] * self.inv_w[2]];
+        let s = 1.0 / (p[0] + p[1] + p[2]);
+        [p[0] * s, p[1] * s, p[2] * s]
+    }
+
+    /// The varyings at a pixel, from perspective-correct weights.
+    #[inline]
     pub fn interpolate(&self, weights: [f32; 3]) -> V {
         V::weighted(&self.varying[0], &self.varying[1], &self.varying[2], weights)
     }
 
     /// Calls `visit` for every pixel centre the triangle covers in rows `rows` (inclusive
     /// bounds, clamped to the triangle's), row by row, left to right.
+    #[inline]
     pub fn scan(&self, rows: (u32, u32), mut visit: impl FnMut(Coverage)) {
         let (y_from, y_to) = (rows.0.max(self.min_y), rows.1.min(self.max_y));
         if y_from > y_to {
@@ -138,29 +193,30 @@ impl<V: Varying> SetupTriangle<V> {
         // Edge k is opposite vertex k: e0 = v1 -> v2, e1 = v2 -> v0, e2 = v0 -> v1.
         let (x, y) = (&self.x, &self.y);
         let edges = [(1, 2), (2, 0), (0, 1)].map(|(a, b)| {
-            let (dx, dy) = (x[b] - x[a], y[b] - y[a]);
+            let (dx, dy) = ((x[b] - x[a]) as i64, (y[b] - y[a]) as i64);
             // Pixels exactly on an edge count only for top and left edges.
             let bias = if is_top_left(dx, dy) { 0 } else { -1 };
             (a, dx, dy, bias)
         });
-        let px0 = self.min_x as i64 * ONE + HALF;
-        let inv_area = 1.0 / self.area2 as f32;
+        let px0 = self.min_x as i64 * ONE as i64 + HALF as i64;
+        let step = edges.map(|(_, _, dy, _)| -dy * ONE as i64);
+        let step_row = edges.map(|(_, dx, _, _)| dx * ONE as i64);
+        let pyf = y_from as i64 * ONE as i64 + HALF as i64;
+        let mut row_e = edges.map(|(a, dx, dy, bias)| dx * (pyf - y[a] as i64) - dy * (px0 - x[a] as i64) + bias);
         for py in y_from..=y_to {
-            let pyf = py as i64 * ONE + HALF;
-            let mut e = edges.map(|(a, dx, dy, bias)| dx * (pyf - y[a]) - dy * (px0 - x[a]) + bias);
-            let step = edges.map(|(_, _, dy, _)| -dy * ONE);
+            let mut e = row_e;
             for px in self.min_x..=self.max_x {
                 if (e[0] | e[1] | e[2]) >= 0 {
                     // Undo the bias before weighting; it only decides ties.
-                    let l = [0, 1, 2].map(|k| (e[k] - edges[k].3) as f32 * inv_area);
-                    let depth = l[0] * self.z[0] + l[1] * self.z[1] + l[2] * self.z[2];
-                    let p = [0, 1, 2].map(|k| l[k] * self.inv_w[k]);
-                    let s = 1.0 / (p[0] + p[1] + p[2]);
-                    visit(Coverage { x: px, y: py, depth, weights: [p[0] * s, p[1] * s, p[2] * s] });
+                    let linear = [0, 1, 2].map(|k| (e[k] - edges[k].3) as f32 * self.inv_area);
+                    visit(Coverage { x: px, y: py, linear });
                 }
                 for k in 0..3 {
                     e[k] += step[k];
                 }
+            }
+            for k in 0..3 {
+                row_e[k] += step_row[k];
             }
         }
     }

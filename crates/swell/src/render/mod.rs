@@ -1,6 +1,9 @@
 //! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer:
-//! [`sky_pass`] clears to the sky, [`water_pass`] draws the water surface.
+//! [`sky_pass`] clears to the sky, [`water_pass`] draws the water surface, [`overlay_pass`] draws
+//! the wireframe and normals when asked for.
 
+mod mesh_pass;
+mod overlay_pass;
 mod sky_pass;
 mod terrain_pass;
 mod water_pass;
@@ -11,15 +14,21 @@ use crate::raster::{ClipVertex, Framebuffer};
 use crate::scene::World;
 use crate::shading::Environment;
 
+pub use mesh_pass::{MeshLight, MeshRenderer};
+
 /// Renders [`World`]s, keeping its buffers from frame to frame so steady-state frames do not
 /// allocate.
 #[derive(Default)]
 pub struct Renderer {
     framebuffer: Option<Framebuffer>,
+    /// The supersampled frame, when `[render] supersample` > 1.
+    supersampled: Option<Framebuffer>,
     /// Vertex-stage output, reused by every pass.
     clip_vertices: Vec<ClipVertex<Vec3>>,
     /// Per-triangle colours for flat shading, reused by every pass.
     face_colors: Vec<Vec3>,
+    /// The water pass's own vertex buffers (per-pixel and flat shading).
+    water_scratch: water_pass::Scratch,
 }
 
 impl Renderer {
@@ -35,11 +44,14 @@ impl Renderer {
     }
 
     /// Renders `world` at `width` x `height` pixels (each at least 1, checked by the caller against
-    /// [`crate::scene::MAX_IMAGE_SIDE`]).
+    /// [`crate::scene::MAX_IMAGE_SIDE`]), supersampled per the scene's `[render] supersample`.
     pub fn render_size(&mut self, world: &World, width: u32, height: u32) -> &Framebuffer {
-        let fb = self.framebuffer.get_or_insert_with(|| Framebuffer::new(width, height));
-        if (fb.width(), fb.height()) != (width, height) {
-            fb.resize(width, height);
+        let ss = world.scene.render.supersample.max(1);
+        let target = if ss > 1 { &mut self.supersampled } else { &mut self.framebuffer };
+        let (w, h) = (width * ss, height * ss);
+        let fb = target.get_or_insert_with(|| Framebuffer::new(w, h));
+        if (fb.width(), fb.height()) != (w, h) {
+            fb.resize(w, h);
         }
         let scene = &world.scene;
         let frame = FrameContext {
@@ -47,18 +59,36 @@ impl Renderer {
                 lights: &scene.lights,
                 ambient: scene.render.ambient,
                 sky: &scene.sky,
+                sun: scene.sky.sun(&scene.lights),
                 eye: scene.camera.eye,
+                time: world.time(),
             },
             clip_from_world: scene.camera.clip_from_world(width as f32 / height as f32),
         };
-        sky_pass::draw(fb, scene);
+        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
         if let Some(terrain) = &world.terrain {
             terrain_pass::draw(fb, &frame, terrain, &mut self.clip_vertices, &mut self.face_colors);
         }
         if let Some(water) = &world.water {
-            water_pass::draw(fb, &frame, water, &mut self.clip_vertices, &mut self.face_colors);
+            water_pass::draw(
+                fb,
+                &frame,
+                water,
+                &mut self.clip_vertices,
+                &mut self.face_colors,
+                &mut self.water_scratch,
+                world.terrain.as_ref(),
+            );
         }
-        fb
+        if let Some(water) = &world.water {
+            overlay_pass::draw(fb, &frame, &water.mesh, scene.render.wireframe, scene.render.normals);
+        }
+        if ss > 1 {
+            let hi = self.supersampled.as_ref().expect("rendered above");
+            let out = self.framebuffer.get_or_insert_with(|| Framebuffer::new(width, height));
+            out.downsample_from(hi, ss);
+        }
+        self.framebuffer.as_ref().expect("rendered above")
     }
 }
 

@@ -3,16 +3,21 @@
 use glam::Vec3;
 
 use crate::raster::Framebuffer;
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, Scene, SunDisc};
 
-/// Fills `fb` with the sky of `scene` and clears depth.
-pub fn draw(fb: &mut Framebuffer, scene: &Scene) {
+/// Fills `fb` with the sky of `scene` (and its sun disc, if any) and clears depth.
+pub fn draw(fb: &mut Framebuffer, scene: &Scene, sun: Option<&SunDisc>) {
     let (width, height) = (fb.width(), fb.height());
     let rays = SkyRays::new(&scene.camera, width as f32 / height as f32);
     fb.clear_with(|x, y| {
         let ndc_x = 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
         let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / height as f32;
-        scene.sky.radiance(rays.direction(ndc_x, ndc_y))
+        let dir = rays.direction(ndc_x, ndc_y);
+        let sky = scene.sky.radiance(dir);
+        match sun {
+            Some(s) => sky + s.radiance(dir),
+            None => sky,
+        }
     });
 }
 

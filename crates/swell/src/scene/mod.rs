@@ -10,18 +10,20 @@ mod scene;
 mod sky;
 mod terrain_body;
 mod terrain_spec;
+mod water_material;
 mod water_spec;
 mod world;
 
 pub use camera::Camera;
 pub use light::{Incident, Light};
 pub use presets::{preset, Preset, PRESETS};
-pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_THREADS};
+pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_THREADS};
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
-pub use sky::Sky;
+pub use sky::{Sky, SunDisc};
 pub use terrain_body::TerrainBody;
 pub use terrain_spec::{
     HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,
 };
+pub use water_material::MAX_ABSORPTION;
 pub use water_spec::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
 pub use world::{WaterBody, World};

@@ -30,11 +30,31 @@ pub struct RenderSettings {
     pub ambient: Vec3,
     /// Worker threads, 0 = one per core; in [0, [`MAX_THREADS`]]. The image does not depend on it.
     pub threads: u32,
+    /// Supersampling factor per axis, in [1, [`MAX_SUPERSAMPLE`]]: the frame is rendered at
+    /// `supersample` times the size and box-filtered down in linear colour. Default 1 (off).
+    pub supersample: u32,
+    /// Draw the triangle edges of the water over the image (paper 002). Default false.
+    pub wireframe: bool,
+    /// Draw each water vertex's normal as a short line (paper 002). Default false.
+    pub normals: bool,
 }
+
+/// Largest supersampling factor per axis (16 samples per pixel).
+pub const MAX_SUPERSAMPLE: u32 = 4;
 
 impl Default for RenderSettings {
     fn default() -> Self {
-        Self { width: 1280, height: 720, exposure: 1.0, gamma: None, ambient: Vec3::new(0.13, 0.15, 0.18), threads: 0 }
+        Self {
+            width: 1280,
+            height: 720,
+            exposure: 1.0,
+            gamma: None,
+            ambient: Vec3::new(0.13, 0.15, 0.18),
+            threads: 0,
+            supersample: 1,
+            wireframe: false,
+            normals: false,
+        }
     }
 }
 
@@ -50,6 +70,9 @@ impl RenderSettings {
         for (i, c) in self.ambient.to_array().into_iter().enumerate() {
             check_non_negative(&format!("{key}.ambient[{i}]"), c)?;
         }
-        check_count(&format!("{key}.threads"), self.threads, 0, MAX_THREADS)
+        check_count(&format!("{key}.threads"), self.threads, 0, MAX_THREADS)?;
+        // The supersampled frame must itself fit the image-size limit.
+        let max_ss = (MAX_IMAGE_SIDE / self.width.max(self.height)).clamp(1, MAX_SUPERSAMPLE);
+        check_count(&format!("{key}.supersample"), self.supersample, 1, max_ss)
     }
 }

@@ -16,12 +16,11 @@
 //! steepness = 0.6
 //! ```
 
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 use serde::{de::DeserializeOwned, Deserialize, Serialize};
 
-use crate::error::{check_finite_vec, check_range, Error, Result};
+use crate::error::{check_finite_vec, Error, Result};
 use crate::math::GridSpec;
-use crate::shading::Shading;
 use crate::water::{
     wave_set, Airy, AiryParams, GerstnerTessendorf, NoiseParams, NoiseWaves, RadialWave, RadialWaveParams, River,
     RiverParams, SpringMesh, SpringMeshParams, SteepSines, SteepSinesParams, TessendorfParams, WaveSetParams,
@@ -60,33 +59,7 @@ impl WaterSurface {
     }
 }
 
-/// How the water looks: `[water.material]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct WaterMaterial {
-    /// Linear RGB colour of light scattered back from the water body, components in [0, 1].
-    pub color: Vec3,
-    /// Shading model. Default `gouraud`.
-    pub shading: Shading,
-    /// Refractive index of water relative to air, in [1, 3]. Default 1.333 (fresh water, 20 °C).
-    pub refractive_index: f32,
-}
-
-impl Default for WaterMaterial {
-    fn default() -> Self {
-        Self { color: Vec3::new(0.02, 0.11, 0.16), shading: Shading::Gouraud, refractive_index: 1.333 }
-    }
-}
-
-impl WaterMaterial {
-    /// Checks every field, naming keys under `key` (normally `water.material`).
-    pub fn validate(&self, key: &str) -> Result<()> {
-        for (i, c) in self.color.to_array().into_iter().enumerate() {
-            check_range(&format!("{key}.color[{i}]"), c, 0.0, 1.0)?;
-        }
-        check_range(&format!("{key}.refractive_index"), self.refractive_index, 1.0, 3.0)
-    }
-}
+pub use super::water_material::WaterMaterial;
 
 /// Gerstner waves (paper 000): `model = "gerstner"` and a `[[water.waves]]` list.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -264,6 +237,7 @@ pub(crate) fn deserialize_at<T: DeserializeOwned>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shading::Shading;
 
     fn parse(text: &str) -> Result<WaterSpec> {
         WaterSpec::from_table(toml::from_str(text).unwrap(), "test")

@@ -3,6 +3,7 @@
 use super::{Scene, TerrainBody, WaterMaterial};
 use crate::error::Result;
 use crate::mesh::SurfaceMesh;
+use crate::shading::Texture;
 use crate::water::WaveModel;
 
 /// The water of a [`World`]: the model, the mesh it displaces and the material it is drawn with.
@@ -13,6 +14,8 @@ pub struct WaterBody {
     pub mesh: SurfaceMesh,
     /// How it looks.
     pub material: WaterMaterial,
+    /// The material's texture, loaded or generated, if it names one.
+    pub texture: Option<Texture>,
 }
 
 /// A [`Scene`] with its models built; [`World::update`] moves it to a time.
@@ -35,7 +38,8 @@ impl World {
             Some(spec) => {
                 let model = spec.model.build()?;
                 let mesh = SurfaceMesh::new(spec.surface.grid()?);
-                Some(WaterBody { model, mesh, material: spec.material })
+                let texture = spec.material.load_texture()?;
+                Some(WaterBody { model, mesh, material: spec.material.clone(), texture })
             }
             None => None,
         };

@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use crate::scene::{Light, Sky};
+use crate::scene::{Light, Sky, SunDisc};
 
 /// Everything that lights a surface: the lights, the ambient term and the sky (for reflections).
 #[derive(Clone, Copy, Debug)]
@@ -13,8 +13,23 @@ pub struct Environment<'a> {
     pub ambient: Vec3,
     /// The sky, for reflections.
     pub sky: &'a Sky,
+    /// The sun disc drawn in the sky and reflected by water, if any ([`Sky::sun`]).
+    pub sun: Option<SunDisc>,
     /// Camera position, world metres.
     pub eye: Vec3,
+    /// Simulation time of the frame, seconds (animates sliding textures).
+    pub time: f64,
+}
+
+impl Environment<'_> {
+    /// Radiance of the sky, sun disc included, along unit world direction `dir`.
+    pub fn sky_radiance(&self, dir: Vec3) -> Vec3 {
+        let sky = self.sky.radiance(dir);
+        match &self.sun {
+            Some(sun) => sky + sun.radiance(dir),
+            None => sky,
+        }
+    }
 }
 
 /// Ambient plus Lambert diffuse irradiance at `p` with unit normal `n`:

@@ -1,25 +1,264 @@
-//! The colour of a water surface point: light scattered from the water body plus the sky it
-//! reflects, weighted by Fresnel (paper 003 §2).
+//! The colour of a water surface point (paper 003 §2): the sky and sun it reflects, the bottom it
+//! lets through (refracted, absorbed per colour channel), the light scattered by the water body,
+//! the sun glitter and the foam, weighted by Fresnel.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
-use super::{fresnel_dielectric, lambert, Environment};
+use super::{fresnel_dielectric, lambert, specular, Environment, Lobe, Texture};
 use crate::scene::WaterMaterial;
 
-/// Radiance leaving water point `p` (world m) with unit normal `n` towards the eye.
+/// What lies under the water: the height and colour of the bottom below each horizontal point.
 ///
-/// `(1 - F) * color * (ambient + diffuse) + F * sky(reflected view ray)`, with F the exact Fresnel
-/// reflectance for the material's refractive index. A reflected ray that points below the horizon
-/// hits the water again; it is bent back to the horizon, whose colour is what such a ray would
-/// eventually see.
-pub fn shade_water(env: &Environment, material: &WaterMaterial, p: Vec3, n: Vec3) -> Vec3 {
+/// Implemented by [`FlatBottom`], [`NoBottom`], and by terrain (in the renderer) for scenes with one.
+pub trait Seabed: Sync {
+    /// Bottom height (world y, metres) and linear RGB albedo under world (`x`, `z`), or `None`
+    /// where no bottom is seen (deep water).
+    fn sample(&self, x: f32, z: f32) -> Option<(f32, Vec3)>;
+}
+
+/// A horizontal bottom at world height `height` with one albedo.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatBottom {
+    /// World y of the bottom, metres (negative below water at rest).
+    pub height: f32,
+    /// Linear RGB albedo, [0, 1].
+    pub albedo: Vec3,
+}
+
+impl Seabed for FlatBottom {
+    fn sample(&self, _x: f32, _z: f32) -> Option<(f32, Vec3)> {
+        Some((self.height, self.albedo))
+    }
+}
+
+/// Deep water: no bottom anywhere.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NoBottom;
+
+impl Seabed for NoBottom {
+    fn sample(&self, _x: f32, _z: f32) -> Option<(f32, Vec3)> {
+        None
+    }
+}
+
+/// Everything about one water body that its shading needs, resolved once per frame.
+#[derive(Clone, Copy)]
+pub struct WaterLook<'a> {
+    /// The material keys.
+    pub material: &'a WaterMaterial,
+    /// What is under the water.
+    pub seabed: &'a dyn Seabed,
+    /// The material's texture, if any.
+    pub texture: Option<&'a Texture>,
+    /// Texture coordinates of world (x, z) are `(x, z) / texture_scale + texture_offset` (tiles);
+    /// the offset slides the texture with the flow.
+    pub texture_offset: Vec2,
+}
+
+impl<'a> WaterLook<'a> {
+    /// The look of `material` over `seabed` at time `t` (s): the texture slides by
+    /// `flow_velocity * t`, so a point of the pattern moves with the water (paper 004).
+    pub fn new(material: &'a WaterMaterial, seabed: &'a dyn Seabed, texture: Option<&'a Texture>, t: f64) -> Self {
+        // Reduce modulo one tile in f64 so that hours of flow keep full f32 precision.
+        let tiles = |v: f32| (-(v as f64) * t / material.texture_scale as f64).rem_euclid(1.0) as f32;
+        let texture_offset = Vec2::new(tiles(material.flow_velocity.x), tiles(material.flow_velocity.y));
+        Self { material, seabed, texture, texture_offset }
+    }
+
+    /// The water-body colour at world (`x`, `z`): `color`, or its blend with the texture.
+    pub fn body_color(&self, x: f32, z: f32) -> Vec3 {
+        let m = self.material;
+        match self.texture {
+            Some(tex) => {
+                let uv = Vec2::new(x, z) / m.texture_scale + self.texture_offset;
+                m.color.lerp(tex.sample(uv), m.texture_mix)
+            }
+            None => m.color,
+        }
+    }
+}
+
+/// Refracts the unit direction `incident` (travelling towards the surface) through unit normal
+/// `n` (on the incident side) with `eta` = n_incident / n_transmitted, by Snell's law
+/// `n1 sin θ1 = n2 sin θ2` in vector form; `None` on total internal reflection.
+pub fn refract(incident: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
+    let cos_i = -n.dot(incident);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t > 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some(eta * incident + (eta * cos_i - cos_t) * n)
+}
+
+/// Fixed-point steps that find where a refracted ray meets a bottom that is not flat.
+const SEABED_ITERATIONS: usize = 4;
+
+/// Radiance leaving water point `p` (world m) with unit normal `n` towards the eye; `foam` in
+/// [0, 1] whitens it.
+///
+/// `L = F sky(r) + (1 − F) L_t + specular + foam`, with F the exact Fresnel reflectance
+/// ([`fresnel_dielectric`]) and r the mirrored view ray, where the transmitted radiance
+/// `L_t = L_bottom e^(−a s) + L_body (1 − e^(−a s))` is the refracted bottom attenuated by
+/// Beer-Lambert absorption `a` (per channel, 1/m) over the underwater path s, plus light
+/// scattered by the water body (`color` lit by the lights) along it; with no bottom in sight
+/// only the body remains (deep water). The bottom is lit by the lights after their own
+/// refraction and absorption down to it. A reflected ray below the horizon would hit the water
+/// again; it is bent back to the horizon, whose colour is what such a ray would eventually see.
+/// Reflection of terrain above the water is not included.
+pub fn shade_water(env: &Environment, look: &WaterLook, lobe: Lobe, p: Vec3, n: Vec3, foam: f32) -> Vec3 {
+    let m = look.material;
     let to_eye = (env.eye - p).normalize_or(Vec3::Y);
     // Seen from behind (a fold, or the far side of a steep crest), shade the side facing the eye.
     let n = if n.dot(to_eye) < 0.0 { -n } else { n };
     let cos_i = n.dot(to_eye);
-    let f = fresnel_dielectric(cos_i, material.refractive_index);
+    let f = fresnel_dielectric(cos_i, m.refractive_index);
     let mut reflected = (2.0 * cos_i * n - to_eye).normalize_or(Vec3::Y);
     reflected.y = reflected.y.max(0.0);
-    let body = material.color * lambert(env, p, n);
-    body * (1.0 - f) + env.sky.radiance(reflected.normalize_or(Vec3::Y)) * f
+    let sky = env.sky_radiance(reflected.normalize_or(Vec3::Y));
+
+    let body = look.body_color(p.x, p.z) * lambert(env, p, n);
+    let transmitted = match refract(-to_eye, n, 1.0 / m.refractive_index) {
+        Some(t) if t.y < -1e-4 => match bottom_hit(look.seabed, p, t) {
+            Some((path, height, albedo)) => {
+                let bottom = albedo * bottom_irradiance(env, m, p.y.max(0.0) - height);
+                let transmittance = (-m.absorption * path).exp();
+                bottom * transmittance + body * (Vec3::ONE - transmittance)
+            }
+            None => body,
+        },
+        _ => body,
+    };
+    let glitter =
+        if m.specular > 0.0 { m.specular * specular(env, p, n, to_eye, lobe, m.shininess) } else { Vec3::ZERO };
+    let water = sky * f + transmitted * (1.0 - f) + glitter;
+    if foam > 0.0 {
+        let foam_light = m.foam_color * lambert(env, p, Vec3::Y);
+        water.lerp(foam_light, foam.min(1.0))
+    } else {
+        water
+    }
+}
+
+/// Where the refracted ray from `p` along unit `t` (downwards) meets the seabed: (path length m,
+/// bottom height, albedo). Exact for a flat bottom after the first step; for a varying one each
+/// step re-reads the height where the previous estimate landed.
+fn bottom_hit(seabed: &dyn Seabed, p: Vec3, t: Vec3) -> Option<(f32, f32, Vec3)> {
+    let (mut height, mut albedo) = seabed.sample(p.x, p.z)?;
+    let mut s = 0.0;
+    for _ in 0..SEABED_ITERATIONS {
+        if height >= p.y {
+            return Some((0.0, height, albedo));
+        }
+        let next = (height - p.y) / t.y;
+        if (next - s).abs() < 1e-3 {
+            break;
+        }
+        s = next;
+        let q = p + t * s;
+        (height, albedo) = seabed.sample(q.x, q.z)?;
+    }
+    Some((s.max(0.0), height, albedo))
+}
+
+/// Irradiance on a horizontal bottom `depth` metres under the surface: each light enters through
+/// the flat surface (losing its Fresnel reflection), refracts towards the vertical and is absorbed
+/// over its slant path; ambient light is absorbed over the depth.
+fn bottom_irradiance(env: &Environment, m: &WaterMaterial, depth: f32) -> Vec3 {
+    let depth = depth.max(0.0);
+    let eta = 1.0 / m.refractive_index;
+    env.lights.iter().fold(env.ambient * (-m.absorption * depth).exp(), |acc, light| {
+        let inc = light.incident(Vec3::ZERO);
+        let cos_l = inc.to_light.y;
+        if cos_l <= 0.0 {
+            return acc;
+        }
+        let sin2_t = eta * eta * (1.0 - cos_l * cos_l);
+        let cos_t = (1.0 - sin2_t).max(1e-3).sqrt();
+        let entering = 1.0 - fresnel_dielectric(cos_l, m.refractive_index);
+        acc + inc.radiance * (cos_t * entering) * (-m.absorption * (depth / cos_t)).exp()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Light, Sky};
+
+    #[test]
+    fn refraction_obeys_snells_law() {
+        let n = Vec3::Y;
+        for deg in [0.0f32, 10.0, 30.0, 60.0, 89.0] {
+            let a = deg.to_radians();
+            let incident = Vec3::new(a.sin(), -a.cos(), 0.0);
+            let t = refract(incident, n, 1.0 / 1.333).unwrap();
+            assert!((t.length() - 1.0).abs() < 1e-5);
+            let sin_t = t.x;
+            assert!((a.sin() - 1.333 * sin_t).abs() < 1e-5, "{deg}°: sin θ1 {} vs n sin θ2 {}", a.sin(), 1.333 * sin_t);
+            assert!(t.y < 0.0, "the ray goes on downwards");
+        }
+        // From inside water past the critical angle (48.6°): total internal reflection.
+        let a = 50f32.to_radians();
+        assert!(refract(Vec3::new(a.sin(), a.cos(), 0.0), -Vec3::Y, 1.333).is_none());
+        let a = 45f32.to_radians();
+        assert!(refract(Vec3::new(a.sin(), a.cos(), 0.0), -Vec3::Y, 1.333).is_some());
+    }
+
+    fn env<'a>(lights: &'a [Light], sky: &'a Sky) -> Environment<'a> {
+        Environment { lights, ambient: Vec3::splat(0.1), sky, sun: None, eye: Vec3::new(0.0, 10.0, 0.0), time: 0.0 }
+    }
+
+    #[test]
+    fn a_shallow_bottom_shows_through_and_fades_with_depth_reddest_first() {
+        let lights = [Light::Directional { direction: Vec3::new(0.0, -1.0, 0.0), color: Vec3::ONE, intensity: 1.0 }];
+        let sky = Sky::default();
+        let env = env(&lights, &sky);
+        let material = WaterMaterial { specular: 0.0, bottom_color: Vec3::ONE, ..WaterMaterial::default() };
+        let look_at = |depth: f32| {
+            let bottom = FlatBottom { height: -depth, albedo: Vec3::ONE };
+            let look = WaterLook::new(&material, &bottom, None, 0.0);
+            shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 0.0)
+        };
+        let deep = shade_water(
+            &env,
+            &WaterLook::new(&material, &NoBottom, None, 0.0),
+            Lobe::BlinnPhong,
+            Vec3::ZERO,
+            Vec3::Y,
+            0.0,
+        );
+        let (shallow, mid, far) = (look_at(0.5), look_at(5.0), look_at(500.0));
+        assert!(shallow.x > mid.x && mid.x > far.x, "red fades with depth: {shallow} {mid} {far}");
+        // Red is absorbed fastest, so a bright bottom turns blue-green with depth.
+        assert!(mid.x / shallow.x < mid.z / shallow.z);
+        // Far below, nothing of the bottom is left: the water looks deep.
+        assert!((far - deep).abs().max_element() < 1e-3, "{far} vs {deep}");
+    }
+
+    #[test]
+    fn grazing_views_reflect_the_sky_and_foam_whitens() {
+        let lights = [Light::Directional { direction: Vec3::new(0.3, -1.0, 0.0), color: Vec3::ONE, intensity: 1.0 }];
+        let sky = Sky::default();
+        let mut env = env(&lights, &sky);
+        let material = WaterMaterial { specular: 0.0, ..WaterMaterial::default() };
+        let look = WaterLook::new(&material, &NoBottom, None, 0.0);
+        env.eye = Vec3::new(0.0, 0.01, 100.0);
+        let grazing = shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 0.0);
+        assert!((grazing - sky.horizon).length() < 0.05, "{grazing} should be near the horizon {}", sky.horizon);
+        env.eye = Vec3::new(0.0, 10.0, 0.0);
+        let water = shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 0.0);
+        let foamy = shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 1.0);
+        assert!(foamy.min_element() > water.max_element());
+    }
+
+    #[test]
+    fn the_texture_slides_with_the_flow() {
+        let material =
+            WaterMaterial { flow_velocity: Vec2::new(2.0, 0.0), texture_scale: 8.0, ..WaterMaterial::default() };
+        let tex = Texture::procedural_water(material.color);
+        let at = |t: f64, x: f32| WaterLook::new(&material, &NoBottom, Some(&tex), t).body_color(x, 1.3);
+        // What was at x = 1 at t = 0 is at x = 1 + 2 * 1.5 at t = 1.5.
+        assert!((at(0.0, 1.0) - at(1.5, 4.0)).length() < 1e-4);
+        assert!((at(0.0, 1.0) - at(1.5, 1.0)).length() > 1e-4);
+    }
 }

@@ -1,0 +1,113 @@
+//! How water looks: `[water.material]` (colour, shading model, optics, bottom, foam, texture).
+
+use glam::{Vec2, Vec3};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
+use crate::shading::{Shading, Texture};
+
+/// Most one absorption coefficient may be, 1/m: light is then gone within a millimetre.
+pub const MAX_ABSORPTION: f32 = 1000.0;
+
+/// The look of a water body: `[water.material]`. Every key has a default.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WaterMaterial {
+    /// Linear RGB colour of light scattered back from the water body, components in [0, 1]; it is
+    /// also the colour seen where no bottom is visible (deep water).
+    pub color: Vec3,
+    /// Shading model. Default `gouraud`.
+    pub shading: Shading,
+    /// Refractive index of water relative to air, in [1, 3]. Default 1.333 (fresh water, 20 °C).
+    pub refractive_index: f32,
+    /// Strength of the lights' specular highlight (the sun glitter), in [0, 100]. Default 1.
+    pub specular: f32,
+    /// Specular exponent of the Phong / Blinn-Phong lobe, in [1, 100000]. Default 400 (a calm,
+    /// mirror-like surface gives a small bright glitter).
+    pub shininess: f32,
+    /// Beer-Lambert absorption coefficient per linear RGB channel, 1/m, each in
+    /// [0, [`MAX_ABSORPTION`]]. Default [0.45, 0.064, 0.0145]: pure water at about 650, 550 and
+    /// 450 nm (Pope and Fry 1997), so red fades within metres and blue carries far.
+    pub absorption: Vec3,
+    /// Depth in metres of a flat bottom below the water at rest (y = −depth), > 0; absent means
+    /// deep water (no bottom seen).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bottom_depth: Option<f32>,
+    /// Linear RGB albedo of the flat bottom, components in [0, 1]. Default sand [0.55, 0.47, 0.33].
+    pub bottom_color: Vec3,
+    /// Linear RGB albedo of foam, components in [0, 1]. Default [0.85, 0.88, 0.9].
+    pub foam_color: Vec3,
+    /// Texture of the water colour: `"procedural"` (a tiling water pattern) or an image file path
+    /// (PNG or JPEG, sRGB, relative to the working directory); absent means none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub texture: Option<String>,
+    /// Size of one texture tile on the water, metres, > 0. Default 8.
+    pub texture_scale: f32,
+    /// How much the texture replaces `color`, in [0, 1]. Default 1 (the texel is the colour).
+    pub texture_mix: f32,
+    /// Velocity at which the texture slides over the surface, [x, z] m/s (paper 004's flowing
+    /// river). Default [0, 0].
+    pub flow_velocity: Vec2,
+}
+
+impl Default for WaterMaterial {
+    fn default() -> Self {
+        Self {
+            color: Vec3::new(0.02, 0.11, 0.16),
+            shading: Shading::Gouraud,
+            refractive_index: 1.333,
+            specular: 1.0,
+            shininess: 400.0,
+            absorption: Vec3::new(0.45, 0.064, 0.0145),
+            bottom_depth: None,
+            bottom_color: Vec3::new(0.55, 0.47, 0.33),
+            foam_color: Vec3::new(0.85, 0.88, 0.9),
+            texture: None,
+            texture_scale: 8.0,
+            texture_mix: 1.0,
+            flow_velocity: Vec2::ZERO,
+        }
+    }
+}
+
+impl WaterMaterial {
+    /// Checks every field, naming keys under `key` (normally `water.material`).
+    pub fn validate(&self, key: &str) -> Result<()> {
+        let unit_rgb = |name: &str, c: Vec3| -> Result<()> {
+            for (i, v) in c.to_array().into_iter().enumerate() {
+                check_range(&format!("{key}.{name}[{i}]"), v, 0.0, 1.0)?;
+            }
+            Ok(())
+        };
+        unit_rgb("color", self.color)?;
+        unit_rgb("bottom_color", self.bottom_color)?;
+        unit_rgb("foam_color", self.foam_color)?;
+        check_range(&format!("{key}.refractive_index"), self.refractive_index, 1.0, 3.0)?;
+        check_range(&format!("{key}.specular"), self.specular, 0.0, 100.0)?;
+        check_range(&format!("{key}.shininess"), self.shininess, 1.0, 100_000.0)?;
+        for (i, a) in self.absorption.to_array().into_iter().enumerate() {
+            check_range(&format!("{key}.absorption[{i}]"), a, 0.0, MAX_ABSORPTION)?;
+        }
+        if let Some(d) = self.bottom_depth {
+            check_positive(&format!("{key}.bottom_depth"), d)?;
+        }
+        check_positive(&format!("{key}.texture_scale"), self.texture_scale)?;
+        check_range(&format!("{key}.texture_mix"), self.texture_mix, 0.0, 1.0)?;
+        check_finite_vec(&format!("{key}.flow_velocity"), &self.flow_velocity.to_array())?;
+        if let Some(t) = &self.texture {
+            if t.trim().is_empty() {
+                return Err(Error::invalid(format!("{key}.texture"), "is empty; give \"procedural\" or an image path"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Loads (or generates) the texture the material names; `None` without one.
+    pub fn load_texture(&self) -> Result<Option<Texture>> {
+        match self.texture.as_deref() {
+            None => Ok(None),
+            Some("procedural") => Ok(Some(Texture::procedural_water(self.color))),
+            Some(path) => Texture::from_file(std::path::Path::new(path)).map(Some),
+        }
+    }
+}

@@ -1,0 +1,162 @@
+//! Colour textures: bilinear sampling with wrap-around, a procedural water pattern and image files.
+
+use std::path::Path;
+
+use glam::{Vec2, Vec3};
+
+use crate::error::{Error, Result};
+use crate::math::srgb_to_linear;
+
+/// Largest texture side in texels, to bound memory (16384² linear RGB texels is 3 GiB).
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+
+/// A linear-RGB image sampled with bilinear filtering and repeat (wrap) addressing.
+///
+/// Texture coordinates are in tiles: (0, 0) is the top-left corner of the image, u runs along its
+/// rows, and every integer step repeats it. Texel (i, j) has its centre at ((i + ½)/w, (j + ½)/h).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    width: u32,
+    height: u32,
+    texels: Vec<Vec3>,
+}
+
+impl Texture {
+    /// A texture of `width` x `height` linear-RGB texels, top row first. Fails when a side is 0 or
+    /// above [`MAX_TEXTURE_SIDE`] or the texel count does not match.
+    pub fn new(width: u32, height: u32, texels: Vec<Vec3>) -> Result<Self> {
+        crate::error::check_count("texture width", width, 1, MAX_TEXTURE_SIDE)?;
+        crate::error::check_count("texture height", height, 1, MAX_TEXTURE_SIDE)?;
+        if texels.len() != width as usize * height as usize {
+            return Err(Error::invalid("texture", format!("{} texels for {width} x {height}", texels.len())));
+        }
+        Ok(Self { width, height, texels })
+    }
+
+    /// Reads a PNG or JPEG file (sRGB-encoded, as image files are) into linear RGB.
+    pub fn from_file(path: &Path) -> Result<Self> {
+        let img = image::ImageReader::open(path)
+            .map_err(|e| Error::io(path, e))?
+            .with_guessed_format()
+            .map_err(|e| Error::io(path, e))?
+            .decode()
+            .map_err(|e| Error::Image { path: path.into(), message: e.to_string() })?
+            .to_rgb8();
+        let texels = img.pixels().map(|p| Vec3::from_array(p.0.map(|c| srgb_to_linear(c as f32 / 255.0)))).collect();
+        Self::new(img.width(), img.height(), texels)
+            .map_err(|e| Error::Image { path: path.into(), message: e.to_string() })
+    }
+
+    /// A tiling water pattern around `base` (linear RGB): brighter crossing ridges, like light
+    /// focused by small waves, over slightly darker troughs.
+    ///
+    /// It is a sum of sines with integer wave numbers, so it tiles exactly; the phases come from a
+    /// fixed hash, so the pattern is the same on every run.
+    pub fn procedural_water(base: Vec3) -> Self {
+        const SIDE: u32 = 256;
+        // (k_u, k_v, phase): integer wave numbers per tile keep the pattern periodic.
+        const WAVES: [(f32, f32, f32); 6] =
+            [(3.0, 1.0, 0.3), (-2.0, 3.0, 1.9), (1.0, -4.0, 4.1), (5.0, 2.0, 2.7), (-4.0, -5.0, 5.3), (7.0, -3.0, 0.9)];
+        let highlight = (base * 2.5 + Vec3::splat(0.08)).min(Vec3::ONE);
+        let shadow = base * 0.7;
+        let mut texels = Vec::with_capacity((SIDE * SIDE) as usize);
+        for j in 0..SIDE {
+            for i in 0..SIDE {
+                let (u, v) = ((i as f32 + 0.5) / SIDE as f32, (j as f32 + 0.5) / SIDE as f32);
+                let s: f32 = WAVES
+                    .iter()
+                    .map(|&(ku, kv, ph)| (std::f32::consts::TAU * (ku * u + kv * v) + ph).sin())
+                    .sum::<f32>()
+                    / WAVES.len() as f32;
+                // Ridges where the sum crosses zero: 1 on the crossing, falling off quickly.
+                let ridge = (1.0 - (s * 6.0).abs()).max(0.0).powi(2);
+                let t = 0.5 + 0.5 * s;
+                texels.push(shadow.lerp(base, t) + (highlight - base) * ridge);
+            }
+        }
+        Self { width: SIDE, height: SIDE, texels }
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The texel at integer coordinates, wrapped into the image.
+    pub fn texel(&self, i: i64, j: i64) -> Vec3 {
+        let x = i.rem_euclid(self.width as i64) as usize;
+        let y = j.rem_euclid(self.height as i64) as usize;
+        self.texels[y * self.width as usize + x]
+    }
+
+    /// Bilinearly filtered colour at `uv` (tiles), repeating in both directions. Non-finite
+    /// coordinates give the texel at (0, 0) rather than NaN.
+    pub fn sample(&self, uv: Vec2) -> Vec3 {
+        if !uv.is_finite() {
+            return self.texels[0];
+        }
+        // Wrap first so large offsets (a texture that has flowed for hours) keep their precision.
+        let u = uv.x.rem_euclid(1.0) * self.width as f32 - 0.5;
+        let v = uv.y.rem_euclid(1.0) * self.height as f32 - 0.5;
+        let (i, j) = (u.floor(), v.floor());
+        let (fu, fv) = (u - i, v - j);
+        let (i, j) = (i as i64, j as i64);
+        let top = self.texel(i, j).lerp(self.texel(i + 1, j), fu);
+        let bottom = self.texel(i, j + 1).lerp(self.texel(i + 1, j + 1), fu);
+        top.lerp(bottom, fv)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn checker() -> Texture {
+        let t = vec![Vec3::ZERO, Vec3::ONE, Vec3::ONE, Vec3::ZERO];
+        Texture::new(2, 2, t).unwrap()
+    }
+
+    #[test]
+    fn texel_centres_are_exact_and_midpoints_blend() {
+        let t = checker();
+        assert_eq!(t.sample(Vec2::new(0.25, 0.25)), Vec3::ZERO);
+        assert_eq!(t.sample(Vec2::new(0.75, 0.25)), Vec3::ONE);
+        // Halfway between two texel centres: the average.
+        assert!((t.sample(Vec2::new(0.5, 0.25)) - Vec3::splat(0.5)).length() < 1e-6);
+        // The wrap blends the last column with the first.
+        assert!((t.sample(Vec2::new(0.0, 0.25)) - Vec3::splat(0.5)).length() < 1e-6);
+    }
+
+    #[test]
+    fn sampling_repeats_with_period_one() {
+        let t = Texture::procedural_water(Vec3::new(0.02, 0.11, 0.16));
+        for (u, v) in [(0.1, 0.7), (0.93, 0.02), (0.5, 0.5)] {
+            let a = t.sample(Vec2::new(u, v));
+            for shift in [Vec2::new(1.0, 0.0), Vec2::new(-3.0, 2.0), Vec2::new(17.0, -5.0)] {
+                assert!((t.sample(Vec2::new(u, v) + shift) - a).length() < 1e-4);
+            }
+        }
+        assert!(t.sample(Vec2::new(f32::NAN, 0.0)).is_finite());
+    }
+
+    #[test]
+    fn the_procedural_pattern_is_seamless_across_the_tile_edge() {
+        let t = Texture::procedural_water(Vec3::new(0.02, 0.11, 0.16));
+        let n = t.width() as i64;
+        let max_step = |a: Vec3, b: Vec3| (a - b).abs().max_element();
+        let inner = (0..n - 1).map(|i| max_step(t.texel(i, 7), t.texel(i + 1, 7))).fold(0.0, f32::max);
+        let across = max_step(t.texel(n - 1, 7), t.texel(n, 7));
+        assert!(across <= inner * 1.5 + 1e-6, "seam step {across} vs inner {inner}");
+    }
+
+    #[test]
+    fn a_missing_file_is_an_error_naming_it() {
+        let e = Texture::from_file(Path::new("/nonexistent/water.png")).unwrap_err();
+        assert!(e.to_string().contains("/nonexistent/water.png"), "{e}");
+    }
+}
