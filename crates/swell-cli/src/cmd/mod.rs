@@ -2,6 +2,9 @@
 
 mod presets;
 mod render;
+// issue 8: meshes and map bakes.
+mod bake;
+mod export;
 
 use swell::scene::{preset, Scene, MAX_THREADS};
 use swell::{Error, Result};
@@ -13,6 +16,8 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(a) => render::run(a),
         Command::Presets => presets::run(),
+        Command::Export(a) => export::run(a),
+        Command::Bake(a) => bake::run(a),
     }
 }
 
