@@ -183,7 +183,7 @@ impl Bake {
             check_same_bake(&manifest_path, &manifest)?;
         }
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-        let json = serde_json::to_vec_pretty(&manifest).expect("the manifest always serialises");
+        let json = manifest_json(&manifest);
         write_atomically(&manifest_path, |out| out.write_all(&json).map_err(|e| Error::io(&manifest_path, e)))?;
 
         let mut bake = Bake { dir: dir.into(), settings, manifest, maps, grid, png_range_m, todo: vec![], skipped: 0 };
@@ -419,14 +419,28 @@ fn manifest(
     }
 }
 
-/// Scene parameters are `f32`: print each float as its shortest `f32` form (0.576, not
-/// 0.5759999752044678), which reads back to the same `f32`.
+/// The text of `bake.json`. It is compared byte for byte on `--resume`, so it must be a pure
+/// function of the manifest.
+fn manifest_json(manifest: &BakeManifest) -> Vec<u8> {
+    let value = shortest_floats(serde_json::to_value(manifest).expect("the manifest always serialises"));
+    let mut text = serde_json::to_vec_pretty(&value).expect("a JSON value always serialises");
+    text.push(b'\n');
+    text
+}
+
+/// Most values are `f32` (scene parameters, grid): print those in their shortest `f32` form
+/// (0.576, not 0.5759999752044678), which reads back to the same `f32`. Values that are not exactly
+/// an `f32` (an `f64` frame rate such as 1/3) keep every digit.
 fn shortest_floats(v: serde_json::Value) -> serde_json::Value {
     use serde_json::Value;
     match v {
         Value::Number(n) if n.is_f64() => {
-            let f = n.as_f64().expect("checked") as f32;
-            f.to_string()
+            let f = n.as_f64().expect("checked");
+            if f64::from(f as f32) != f {
+                return Value::Number(n);
+            }
+            (f as f32)
+                .to_string()
                 .parse::<f64>()
                 .ok()
                 .and_then(serde_json::Number::from_f64)
@@ -445,10 +459,14 @@ fn check_same_bake(path: &Path, manifest: &BakeManifest) -> Result<()> {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
         Err(e) => return Err(Error::io(path, e)),
     };
-    let old: serde_json::Value = serde_json::from_slice(&old)
-        .map_err(|e| Error::Parse { path: path.display().to_string(), message: e.to_string() })?;
-    let new = serde_json::to_value(manifest).expect("the manifest always serialises");
+    let new = manifest_json(manifest);
     if old != new {
+        // Both texts go through the same parser, so only real differences show.
+        let parse = |text: &[u8]| {
+            serde_json::from_slice::<serde_json::Value>(text)
+                .map_err(|e| Error::Parse { path: path.display().to_string(), message: e.to_string() })
+        };
+        let (old, new) = (parse(&old)?, parse(&new)?);
         let key = first_difference(&old, &new, String::new());
         return Err(Error::invalid(
             "--resume",
