@@ -54,7 +54,12 @@ pub fn run(a: ExportArgs) -> Result<()> {
                     bar.inc(1);
                 }
                 bar.finish_and_clear();
-                eprintln!("wrote {} files {}", range.len(), frame_path(&a.out, range.first).display());
+                eprintln!(
+                    "wrote {} files, {} to {}",
+                    range.len(),
+                    frame_path(&a.out, range.first).display(),
+                    frame_path(&a.out, range.last).display()
+                );
             }
         }
         Ok(())

@@ -43,7 +43,7 @@ impl FrameRange {
                 return Err(bad());
             }
             // More digits than u32 holds is still a frame number, only too large.
-            t.parse::<u32>().or_else(|_| Err(Error::out_of_range(key, s, format!("frames [0, {MAX_FRAME}]"))))
+            t.parse::<u32>().map_err(|_| Error::out_of_range(key, s, format!("frames [0, {MAX_FRAME}]")))
         };
         Self::new(key, parse(a)?, parse(b)?)
     }
