@@ -20,6 +20,24 @@
 //!
 //! Speed: frames are simulated in order (time-stepped models need that) in batches, and each
 //! batch is encoded and written in parallel while the next is simulated.
+//!
+//! ```
+//! use swell::export::{Bake, BakeSettings, FrameRange};
+//! use swell::scene::{preset, World};
+//!
+//! let mut scene = preset("sea")?;
+//! scene.water.as_mut().unwrap().surface.cells = [32, 32];
+//! let mut world = World::new(scene)?;
+//! let dir = tempfile::tempdir().unwrap();
+//! // Frames 0 to 2 (inclusive) at 24 fps, with 16-bit PNGs beside the EXRs.
+//! let mut settings = BakeSettings::new(FrameRange::new("frames", 0, 2)?);
+//! settings.png_bits = Some(16);
+//! let bake = Bake::prepare(&mut world, dir.path(), settings)?;
+//! bake.run(&mut world, &|frame| println!("frame {frame} done"))?;
+//! assert!(dir.path().join("disp_0002.exr").is_file() && dir.path().join("bake.json").is_file());
+//! assert_eq!(bake.manifest().grid.pixels, [33, 33]);
+//! # Ok::<(), swell::Error>(())
+//! ```
 
 use std::path::{Path, PathBuf};
 

@@ -1,4 +1,17 @@
 //! What the mesh writers take: a list of named triangle meshes, borrowed from a [`World`].
+//!
+//! ```
+//! use swell::export::{world_meshes, write_glb, write_obj};
+//! use swell::scene::{preset, World};
+//!
+//! let mut world = World::new(preset("sea")?)?;
+//! world.update(2.5)?;
+//! let dir = tempfile::tempdir().unwrap();
+//! let aspect = world.scene.render.width as f32 / world.scene.render.height as f32;
+//! write_glb(&dir.path().join("sea.glb"), &world_meshes(&world), &world.scene.camera, aspect)?;
+//! write_obj(&dir.path().join("sea.obj"), &world_meshes(&world))?;
+//! # Ok::<(), swell::Error>(())
+//! ```
 
 use glam::{Vec2, Vec3};
 
