@@ -381,3 +381,64 @@ fn a_looping_bake_flows_from_its_last_frame_into_its_first() {
     assert!(wrap >= 0.9 * lo && wrap <= 1.1 * hi, "wrap step {wrap} outside the other steps' [{lo}, {hi}]");
     assert!((wrap - step(&one_period_on, &frames[23])).abs() < 1e-4);
 }
+
+// ---------------------------------------------------------------- foam
+
+/// A model with foam, to check the foam maps: the sines above, with foam coverage
+/// `0.5 + 0.5 sin(x / 3 + t)` at each vertex's rest position.
+struct FoamySines {
+    waves: swell::water::SumOfSines,
+    t: f64,
+}
+
+impl swell::water::WaveModel for FoamySines {
+    fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
+        self.waves.evaluate(grid, t, positions, normals)
+    }
+    fn height_at(&self, x: f32, z: f32, t: f64) -> f32 {
+        self.waves.height_at(x, z, t)
+    }
+    fn advance(&mut self, t: f64) -> swell::Result<()> {
+        self.t = t;
+        Ok(())
+    }
+    fn foam(&self, grid: &GridSpec, out: &mut [f32]) -> bool {
+        for (v, f) in out.iter_mut().enumerate() {
+            *f = foam_at(grid, v, self.t);
+        }
+        true
+    }
+}
+
+fn foam_at(grid: &GridSpec, v: usize, t: f64) -> f32 {
+    let r = grid.rest_position(v % grid.verts_x(), v / grid.verts_x());
+    0.5 + 0.5 * (r.x / 3.0 + t as f32).sin()
+}
+
+#[test]
+fn models_with_foam_get_foam_maps() {
+    let mut w = World::new(Scene::from_toml(LOOPING_SINES, "test").unwrap()).unwrap();
+    let sines = match &w.scene.water.as_ref().unwrap().model {
+        swell::scene::WaterModelSpec::Sines(s) => swell::water::SumOfSines::new(s.waves.clone()).unwrap(),
+        _ => unreachable!(),
+    };
+    w.water.as_mut().unwrap().model = Box::new(FoamySines { waves: sines, t: 0.0 });
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = BakeSettings::new(FrameRange::new("f", 1, 2).unwrap());
+    s.png_bits = Some(8);
+    let bake = Bake::prepare(&mut w, dir.path(), s).unwrap();
+    bake.run(&mut w, &|_| {}).unwrap();
+    let names: Vec<&str> = bake.manifest().maps.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names, ["disp", "normal", "foam"]);
+    let grid = w.water.as_ref().unwrap().mesh.grid;
+    for frame in 1..=2 {
+        let t = frame as f64 / 24.0;
+        let foam = read_exr_y(&dir.path().join(format!("foam_{frame:04}.exr")));
+        let expected: Vec<f32> = (0..grid.vertex_count()).map(|v| foam_at(&grid, v, t)).collect();
+        assert_eq!(foam, expected, "frame {frame}");
+        let png = image::open(dir.path().join(format!("foam_{frame:04}.png"))).unwrap().into_luma8();
+        for (p, f) in png.pixels().zip(&expected) {
+            assert!((p[0] as f32 / 255.0 - f).abs() <= 0.5 / 255.0 + 1e-6);
+        }
+    }
+}
