@@ -121,6 +121,10 @@ pub struct BakeArgs {
     /// PNG displacement range in metres: components map from [-R, R] (default: from the first frame).
     #[arg(long, value_name = "R")]
     pub png_range: Option<f32>,
+    /// Maps of CELLS x CELLS pixels (leave out the last column and row, which repeat the first for
+    /// models periodic over the patch, such as the FFT ocean), for wrap-around sampling.
+    #[arg(long)]
+    pub tile: bool,
     /// EXR compression: none, rle, zip or piz (all lossless).
     #[arg(long, value_name = "C", default_value = "none")]
     pub exr_compression: String,

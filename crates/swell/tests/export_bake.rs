@@ -442,3 +442,19 @@ fn models_with_foam_get_foam_maps() {
         }
     }
 }
+
+#[test]
+fn tiled_maps_leave_out_the_repeated_last_column_and_row() {
+    let (full, tiled) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let s = BakeSettings::new(FrameRange::new("f", 2, 2).unwrap());
+    bake(SEA, full.path(), s.clone());
+    let m = bake(SEA, tiled.path(), BakeSettings { tile: true, ..s });
+    assert_eq!((m.grid.pixels, m.grid.tile), ([24, 16], true));
+    for map in ["disp", "normal"] {
+        let (w, h, a) = read_exr_rgb(&full.path().join(format!("{map}_0002.exr")));
+        let (tw, th, b) = read_exr_rgb(&tiled.path().join(format!("{map}_0002.exr")));
+        assert_eq!((w - 1, h - 1), (tw, th));
+        let cropped: Vec<Vec3> = (0..th).flat_map(|j| a[j * w..j * w + tw].to_vec()).collect();
+        assert_eq!(cropped, b, "{map}");
+    }
+}

@@ -21,6 +21,7 @@ pub fn run(a: BakeArgs) -> Result<()> {
     settings.resume = a.resume;
     settings.png_bits = a.png;
     settings.png_range_m = a.png_range;
+    settings.tile = a.tile;
     settings.compression = ExrCompression::parse("--exr-compression", &a.exr_compression)?;
     settings.validate()?;
     let scene = load_scene(&a.source)?;

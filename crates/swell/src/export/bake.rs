@@ -82,6 +82,10 @@ pub struct BakeSettings {
     pub compression: ExrCompression,
     /// The model's loop period in seconds, if it has one (recorded in `bake.json`).
     pub loop_period_s: Option<f64>,
+    /// Maps of `cells` pixels per side instead of `cells + 1`: the last column and row, which
+    /// repeat the first ones when the model is periodic over the patch (FFT ocean), are left out,
+    /// so the maps tile with wrap-around sampling (a 512-cell ocean gives 512 x 512 maps).
+    pub tile: bool,
 }
 
 impl BakeSettings {
@@ -96,6 +100,7 @@ impl BakeSettings {
             png_range_m: None,
             compression: ExrCompression::None,
             loop_period_s: None,
+            tile: false,
         }
     }
 
@@ -230,6 +235,11 @@ impl Bake {
         self.skipped
     }
 
+    /// Map width and height in pixels.
+    fn map_size(&self) -> (usize, usize) {
+        map_size(&self.grid, self.settings.tile)
+    }
+
     /// Every file of `frame`, under its final name.
     pub fn frame_files(&self, frame: u32) -> Vec<PathBuf> {
         let mut files: Vec<PathBuf> = self.maps.iter().map(|m| self.file(*m, frame, "exr")).collect();
@@ -250,7 +260,7 @@ impl Bake {
             return Ok(());
         }
         let batch = (2 * rayon::current_num_threads()).max(2);
-        let n = self.grid.vertex_count();
+        let n = self.map_size().0 * self.map_size().1;
         let alloc = || -> Vec<FrameFields> {
             (0..batch.min(self.todo.len()))
                 .map(|_| FrameFields {
@@ -293,10 +303,11 @@ impl Bake {
         world.update(t)?;
         let mesh = &world.water.as_ref().expect("checked in prepare").mesh;
         out.frame = frame;
-        displacement(&mesh.positions, &self.grid, &mut out.disp);
-        out.normal.copy_from_slice(&mesh.normals);
+        let width = self.map_size().0;
+        displacement(&mesh.positions, &self.grid, width, &mut out.disp);
+        copy_rows(&mesh.normals, self.grid.verts_x(), width, &mut out.normal);
         if !out.foam.is_empty() {
-            out.foam.copy_from_slice(&mesh.foam);
+            copy_rows(&mesh.foam, self.grid.verts_x(), width, &mut out.foam);
         }
         let finite = out.disp.par_iter().chain(out.normal.par_iter()).all(|v| v.is_finite())
             && out.foam.par_iter().all(|f| f.is_finite());
@@ -310,7 +321,7 @@ impl Bake {
 
     /// Writes every file of one frame, the files in parallel, each atomically.
     fn write_frame(&self, f: &FrameFields) -> Result<()> {
-        let (w, h) = (self.grid.verts_x(), self.grid.verts_z());
+        let (w, h) = self.map_size();
         let compression = self.settings.compression;
         let mut jobs: Vec<(MapKind, bool)> = self.maps.iter().map(|&m| (m, false)).collect();
         if self.settings.png_bits.is_some() {
@@ -328,7 +339,7 @@ impl Bake {
     }
 
     fn write_png(&self, path: &Path, map: MapKind, f: &FrameFields) -> Result<()> {
-        let (w, h) = (self.grid.verts_x() as u32, self.grid.verts_z() as u32);
+        let (w, h) = (self.map_size().0 as u32, self.map_size().1 as u32);
         let bits = self.settings.png_bits.expect("only called with PNGs on");
         let unit = |v: f32, r: f32| 0.5 * (v / r + 1.0);
         match map {
@@ -346,10 +357,26 @@ impl Bake {
     }
 }
 
-/// Writes `positions[v] - rest(v)` for every vertex, rows in parallel.
-fn displacement(positions: &[Vec3], grid: &GridSpec, out: &mut [Vec3]) {
+/// Map width and height in pixels: vertices per side, or cells per side when `tile`.
+fn map_size(grid: &GridSpec, tile: bool) -> (usize, usize) {
+    if tile {
+        (grid.cells_x as usize, grid.cells_z as usize)
+    } else {
+        (grid.verts_x(), grid.verts_z())
+    }
+}
+
+/// Copies the first `width` values of each row of `src` (rows of `stride`) into `out` (rows of
+/// `width`), as many rows as `out` holds.
+fn copy_rows<T: Copy + Send + Sync>(src: &[T], stride: usize, width: usize, out: &mut [T]) {
+    out.par_chunks_mut(width).zip(src.par_chunks(stride)).for_each(|(o, s)| o.copy_from_slice(&s[..width]));
+}
+
+/// Writes `positions[v] - rest(v)` for the first `width` vertices of each row, as many rows as
+/// `out` holds, rows in parallel.
+fn displacement(positions: &[Vec3], grid: &GridSpec, width: usize, out: &mut [Vec3]) {
     let nx = grid.verts_x();
-    out.par_chunks_mut(nx).zip(positions.par_chunks(nx)).enumerate().for_each(|(j, (d, p))| {
+    out.par_chunks_mut(width).zip(positions.par_chunks(nx)).enumerate().for_each(|(j, (d, p))| {
         for (i, (d, p)) in d.iter_mut().zip(p).enumerate() {
             let r = grid.rest_position(i, j);
             *d = *p - Vec3::new(r.x, 0.0, r.y);
@@ -360,7 +387,7 @@ fn displacement(positions: &[Vec3], grid: &GridSpec, out: &mut [Vec3]) {
 /// The automatic PNG displacement range: see [`BakeSettings::png_range_m`].
 fn auto_png_range(positions: &[Vec3], grid: &GridSpec) -> f32 {
     let mut d = vec![Vec3::ZERO; positions.len()];
-    displacement(positions, grid, &mut d);
+    displacement(positions, grid, grid.verts_x(), &mut d);
     let max = d.iter().map(|v| v.abs().max_element()).filter(|m| m.is_finite()).fold(0.0f32, f32::max);
     round_up_2_digits(max * PNG_RANGE_HEADROOM).max(MIN_PNG_RANGE_M)
 }
@@ -398,7 +425,8 @@ fn manifest(
         seed,
         grid: BakeGrid {
             cells: [grid.cells_x, grid.cells_z],
-            pixels: [grid.verts_x() as u32, grid.verts_z() as u32],
+            pixels: [map_size(grid, s.tile).0 as u32, map_size(grid, s.tile).1 as u32],
+            tile: s.tile,
             origin_m: grid.origin.to_array(),
             size_m: grid.size.to_array(),
             spacing_m: grid.spacing().to_array(),

@@ -44,8 +44,10 @@ pub struct BakeGrid {
     /// Cells along x and z.
     pub cells: [u32; 2],
     /// Map width and height in pixels: vertices along x and z, `cells + 1` (the last column and
-    /// row repeat the first ones when the model tiles the patch).
+    /// row repeat the first ones when the model tiles the patch), or `cells` when `tile`.
     pub pixels: [u32; 2],
+    /// Whether the repeated last column and row were left out (`--tile`).
+    pub tile: bool,
     /// World (x, z) of pixel (0, 0), metres.
     pub origin_m: [f32; 2],
     /// Patch extent along x and z, metres.
