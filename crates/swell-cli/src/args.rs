@@ -25,6 +25,10 @@ pub enum Command {
     Terrain(TerrainArgs),
     /// Time the papers' experiments on this machine; write Markdown, JSON and PNG results.
     Bench(BenchArgs),
+    /// Write the displaced surface (and camera) as OBJ, glTF or GLB meshes.
+    Export(ExportArgs),
+    /// Bake displacement, normal and foam maps per frame (EXR, optionally PNG) into a directory.
+    Bake(BakeArgs),
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.
@@ -137,4 +141,76 @@ pub struct BenchArgs {
     /// Exactly N timed runs per row and no warm-up (for tests).
     #[arg(long, value_name = "N", hide = true)]
     pub runs: Option<u32>,
+}
+
+/// `swell export`.
+#[derive(Args, Debug)]
+pub struct ExportArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Output file; with --frames, frame k goes to STEM_kkkk.EXT beside it.
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+    /// Mesh format: obj, gltf (JSON + .bin) or glb (default: from the --out extension).
+    #[arg(long, value_name = "FORMAT")]
+    pub format: Option<String>,
+    /// Simulation time in seconds (one file).
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value_t = 0.0,
+        allow_negative_numbers = true,
+        conflicts_with = "frames"
+    )]
+    pub time: f64,
+    /// Frames A..B (inclusive) to export, one file each, frame k at time k / fps.
+    #[arg(long, value_name = "A..B", allow_hyphen_values = true)]
+    pub frames: Option<String>,
+    /// Frames per second for --frames, in (0, 1000].
+    #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]
+    pub fps: f64,
+    /// Worker threads, 0 = one per core. The files do not depend on it.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: u32,
+}
+
+/// `swell bake`.
+#[derive(Args, Debug)]
+pub struct BakeArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Frames A..B to bake, both included (0..0 is one frame), frame k at time k / fps.
+    #[arg(long, value_name = "A..B", allow_hyphen_values = true)]
+    pub frames: String,
+    /// Frames per second, in (0, 1000].
+    #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]
+    pub fps: f64,
+    /// Output directory (created if missing); holds bake.json and the frames' maps.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Skip frames whose files all exist (a killed or partial bake continues where it stopped).
+    #[arg(long)]
+    pub resume: bool,
+    /// Bake only shard I of N: frames A+I, A+I+N, ... (I from 0).
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Also write PNG maps with 8 or 16 bits per sample (16 if no value is given).
+    #[arg(long, value_name = "BITS", num_args = 0..=1, default_missing_value = "16")]
+    pub png: Option<u8>,
+    /// PNG displacement range in metres: components map from [-R, R] (default: from the first frame).
+    #[arg(long, value_name = "R")]
+    pub png_range: Option<f32>,
+    /// Maps of CELLS x CELLS pixels (leave out the last column and row, which repeat the first for
+    /// models periodic over the patch, such as the FFT ocean), for wrap-around sampling.
+    #[arg(long)]
+    pub tile: bool,
+    /// EXR compression: none, rle, zip or piz (all lossless).
+    #[arg(long, value_name = "C", default_value = "none")]
+    pub exr_compression: String,
+    /// Worker threads, 0 = one per core. The files do not depend on it.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: u32,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
 }

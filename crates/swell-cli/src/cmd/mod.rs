@@ -4,6 +4,9 @@ mod bench;
 mod presets;
 mod render;
 mod terrain;
+// issue 8: meshes and map bakes.
+mod bake;
+mod export;
 
 use swell::scene::{preset, Scene, MAX_THREADS};
 use swell::{Error, Result};
@@ -17,6 +20,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Presets => presets::run(),
         Command::Terrain(a) => terrain::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Export(a) => export::run(a),
+        Command::Bake(a) => bake::run(a),
     }
 }
 

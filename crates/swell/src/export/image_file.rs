@@ -60,3 +60,35 @@ pub fn write_gif(
         Ok(())
     })
 }
+
+/// Writes a map of `channels` (1 = grey, 3 = RGB) samples per pixel as an 8- or 16-bit PNG,
+/// atomically. `samples` are in [0, 1] (clamped), row-major, first row first; each is quantised to
+/// `round(s * (2^bits - 1))`.
+pub fn write_png_map(path: &Path, width: u32, height: u32, channels: u8, bits: u8, samples: &[f32]) -> Result<()> {
+    debug_assert_eq!(samples.len(), channels as usize * width as usize * height as usize);
+    let color = match (channels, bits) {
+        (1, 8) => image::ExtendedColorType::L8,
+        (3, 8) => image::ExtendedColorType::Rgb8,
+        (1, 16) => image::ExtendedColorType::L16,
+        (3, 16) => image::ExtendedColorType::Rgb16,
+        _ => {
+            return Err(Error::invalid(
+                "--png",
+                format!("{channels} channels of {bits} bits; valid: 1 or 3 channels of 8 or 16 bits"),
+            ))
+        }
+    };
+    let max = ((1u32 << bits) - 1) as f32;
+    let quantise = |s: f32| (s.clamp(0.0, 1.0) * max).round();
+    let bytes: Vec<u8> = if bits == 8 {
+        samples.iter().map(|&s| quantise(s) as u8).collect()
+    } else {
+        // image takes 16-bit samples in native byte order and writes them big-endian.
+        samples.iter().flat_map(|&s| (quantise(s) as u16).to_ne_bytes()).collect()
+    };
+    write_atomically(path, |out| {
+        let encoder = image::codecs::png::PngEncoder::new(out);
+        image::ImageEncoder::write_image(encoder, &bytes, width, height, color)
+            .map_err(|e| Error::Image { path: path.into(), message: e.to_string() })
+    })
+}

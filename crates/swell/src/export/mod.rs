@@ -1,7 +1,22 @@
-//! Writing results to files: images and animations, always atomically.
+//! Writing results to files: images and animations, meshes, baked map sequences, always atomically.
 
 mod atomic;
 mod image_file;
+// Meshes (OBJ, glTF), float maps (EXR) and bake sequences: issue 8.
+mod bake;
+mod bake_manifest;
+mod exr;
+mod frame_range;
+mod gltf;
+mod named_mesh;
+mod obj;
 
+pub use self::exr::{write_exr_gray, write_exr_rgb, ExrCompression};
 pub use atomic::write_atomically;
-pub use image_file::{write_gif, write_png};
+pub use bake::{model_loop_period, Bake, BakeSettings, MAX_FPS, MIN_PNG_RANGE_M, PNG_RANGE_HEADROOM};
+pub use bake_manifest::{BakeGrid, BakeManifest, BakeMap, BakePng};
+pub use frame_range::{FrameRange, Shard, MAX_FRAME, MAX_SHARDS};
+pub use gltf::{gltf_document, write_glb, write_gltf};
+pub use image_file::{write_gif, write_png, write_png_map};
+pub use named_mesh::{world_meshes, NamedMesh};
+pub use obj::{encode_obj, write_obj};

@@ -110,6 +110,14 @@ pub const WATER_MODELS: &[&str] =
     &["gerstner", "sines", "tessendorf", "wave-set", "airy", "steep-sines", "radial", "noise", "springs", "river"];
 
 impl WaterModelSpec {
+    /// The period (s) after which the model repeats exactly, if it was given one.
+    pub fn loop_period(&self) -> Option<f64> {
+        match self {
+            WaterModelSpec::Tessendorf(p) => p.loop_period.map(f64::from),
+            _ => None,
+        }
+    }
+
     /// Builds the model, validating its parameters.
     pub fn build(&self) -> Result<Box<dyn WaveModel>> {
         Ok(match self {

@@ -1,0 +1,61 @@
+//! `swell bake`: per-frame displacement, normal and foam maps into a directory (see docs/baking.md).
+
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use swell::export::{model_loop_period, Bake, BakeSettings, ExrCompression, FrameRange, Shard};
+use swell::scene::World;
+use swell::Result;
+
+use super::{load_scene, thread_pool};
+use crate::args::BakeArgs;
+
+pub fn run(a: BakeArgs) -> Result<()> {
+    // Every option is checked before the scene is loaded or anything is written.
+    let mut settings = BakeSettings::new(FrameRange::parse("--frames", &a.frames)?);
+    settings.fps = a.fps;
+    settings.shard = match &a.shard {
+        Some(s) => Shard::parse("--shard", s)?,
+        None => Shard::WHOLE,
+    };
+    settings.resume = a.resume;
+    settings.png_bits = a.png;
+    settings.png_range_m = a.png_range;
+    settings.tile = a.tile;
+    settings.compression = ExrCompression::parse("--exr-compression", &a.exr_compression)?;
+    settings.validate()?;
+    let scene = load_scene(&a.source)?;
+    let pool = thread_pool(a.threads)?;
+    pool.install(|| {
+        let mut world = World::new(scene)?;
+        settings.loop_period_s = model_loop_period(&world);
+        let bake = Bake::prepare(&mut world, &a.out, settings)?;
+        let todo = bake.frames_to_bake().len();
+        if bake.skipped() > 0 {
+            eprintln!("{} frames already complete in {}, skipped", bake.skipped(), a.out.display());
+        }
+        let bar = if a.quiet { ProgressBar::hidden() } else { progress_bar(todo as u64, "baking") };
+        let start = Instant::now();
+        let result = bake.run(&mut world, &|_| bar.inc(1));
+        bar.finish_and_clear();
+        result?;
+        let secs = start.elapsed().as_secs_f64();
+        eprintln!(
+            "baked {todo} frames into {} in {secs:.2} s ({:.1} frames/s)",
+            a.out.display(),
+            todo as f64 / secs.max(1e-9)
+        );
+        Ok(())
+    })
+}
+
+/// A progress bar on stderr with elapsed time and ETA (drawn only when stderr is a terminal).
+pub(super) fn progress_bar(len: u64, what: &str) -> ProgressBar {
+    let bar = ProgressBar::new(len).with_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} frames, {per_sec}, {elapsed} elapsed, ETA {eta}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    bar
+}

@@ -1,0 +1,112 @@
+//! `swell export`: the displaced surfaces and the camera as OBJ, glTF or GLB, one frame or many.
+
+use std::path::{Path, PathBuf};
+
+use swell::export::{world_meshes, write_glb, write_gltf, write_obj, FrameRange, MAX_FPS};
+use swell::scene::World;
+use swell::{Error, Result};
+
+use super::bake::progress_bar;
+use super::{load_scene, thread_pool};
+use crate::args::ExportArgs;
+
+#[derive(Clone, Copy)]
+enum Format {
+    Obj,
+    Gltf,
+    Glb,
+}
+
+pub fn run(a: ExportArgs) -> Result<()> {
+    let format = resolve_format(&a)?;
+    let frames = a.frames.as_deref().map(|s| FrameRange::parse("--frames", s)).transpose()?;
+    if !a.time.is_finite() {
+        return Err(Error::out_of_range("--time", a.time, "finite seconds"));
+    }
+    if frames.is_some() && !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= MAX_FPS) {
+        return Err(Error::out_of_range("--fps", a.fps, format!("(0, {MAX_FPS}]")));
+    }
+    check_output_dir(&a.out)?;
+    let scene = load_scene(&a.source)?;
+    let aspect = scene.render.width as f32 / scene.render.height as f32;
+    let pool = thread_pool(a.threads)?;
+    pool.install(|| {
+        let mut world = World::new(scene)?;
+        let mut write = |path: &Path, t: f64| -> Result<()> {
+            world.update(t)?;
+            let meshes = world_meshes(&world);
+            let camera = &world.scene.camera;
+            match format {
+                Format::Obj => write_obj(path, &meshes),
+                Format::Gltf => write_gltf(path, &meshes, camera, aspect),
+                Format::Glb => write_glb(path, &meshes, camera, aspect),
+            }
+        };
+        match frames {
+            None => {
+                write(&a.out, a.time)?;
+                eprintln!("wrote {}", a.out.display());
+            }
+            Some(range) => {
+                let bar = progress_bar(u64::from(range.len()), "exporting");
+                for k in range.iter() {
+                    write(&frame_path(&a.out, k), f64::from(k) / a.fps)?;
+                    bar.inc(1);
+                }
+                bar.finish_and_clear();
+                eprintln!(
+                    "wrote {} files, {} to {}",
+                    range.len(),
+                    frame_path(&a.out, range.first).display(),
+                    frame_path(&a.out, range.last).display()
+                );
+            }
+        }
+        Ok(())
+    })
+}
+
+/// Frame `k` of an export to `out` = `DIR/STEM.EXT` goes to `DIR/STEM_kkkk.EXT` (at least four
+/// digits); a glTF's buffer beside it is `DIR/STEM_kkkk.bin`.
+fn frame_path(out: &Path, k: u32) -> PathBuf {
+    let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = match out.extension() {
+        Some(ext) => format!("{stem}_{k:04}.{}", ext.to_string_lossy()),
+        None => format!("{stem}_{k:04}"),
+    };
+    out.with_file_name(name)
+}
+
+fn resolve_format(a: &ExportArgs) -> Result<Format> {
+    let ext = a.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let (name, key) = match &a.format {
+        Some(f) => (f.to_ascii_lowercase(), "--format"),
+        None => (ext.clone().unwrap_or_default(), "--out"),
+    };
+    match name.as_str() {
+        "obj" => Ok(Format::Obj),
+        "gltf" => Ok(Format::Gltf),
+        "glb" => Ok(Format::Glb),
+        _ if key == "--format" => Err(Error::invalid(key, format!("`{name}` is not one of obj, gltf, glb"))),
+        _ => Err(Error::invalid(
+            key,
+            format!(
+                "cannot tell the format of {}: give --format obj|gltf|glb or end it in .obj, .gltf or .glb",
+                a.out.display()
+            ),
+        )),
+    }
+}
+
+/// Fails early, before any work, if the output's directory does not exist.
+fn check_output_dir(out: &Path) -> Result<()> {
+    let dir = match out.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if dir.is_dir() {
+        Ok(())
+    } else {
+        Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())))
+    }
+}

@@ -1,0 +1,236 @@
+//! `swell bake` and `swell export` through the real binary in a temporary directory: kill and
+//! resume, shards, bad input, and the files the commands promise.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+const SWELL: &str = env!("CARGO_BIN_EXE_swell");
+
+/// The sea preset on a grid of `cells` x `cells`, written to `dir/sea.toml`.
+fn sea_scene(dir: &Path, cells: u32) -> PathBuf {
+    let text = include_str!("../../swell/presets/sea.toml")
+        .replace("cells = [256, 256]", &format!("cells = [{cells}, {cells}]"));
+    assert!(text.contains(&format!("[{cells}, {cells}]")));
+    let path = dir.join("sea.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn swell(args: &[&str]) -> Output {
+    Command::new(SWELL).args(args).output().unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Every visible file of `dir` (temporaries of killed runs start with a dot) and its bytes.
+fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap())
+        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
+        .map(|e| (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap()))
+        .collect()
+}
+
+#[test]
+fn a_killed_bake_resumed_equals_an_uninterrupted_one_byte_for_byte() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 128);
+    let scene = scene.to_str().unwrap();
+    let (killed, whole) = (tmp.path().join("killed"), tmp.path().join("whole"));
+    // PNGs and compression make each frame slow enough (tens of ms on one thread) to kill mid-way.
+    let args = |out: &Path| -> Vec<String> {
+        [
+            "bake",
+            "--scene",
+            scene,
+            "--frames",
+            "0..79",
+            "--png",
+            "16",
+            "--exr-compression",
+            "zip",
+            "--threads",
+            "1",
+            "--quiet",
+            "--out",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .chain([out.to_str().unwrap().to_string()])
+        .collect()
+    };
+    let mut child = Command::new(SWELL).args(args(&killed)).spawn().unwrap();
+    let start = Instant::now();
+    while !killed.join("disp_0003.png").exists() {
+        assert!(start.elapsed() < Duration::from_secs(60), "the bake never got going");
+        assert!(child.try_wait().unwrap().is_none(), "the bake ended before it could be killed");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let partial = files(&killed);
+    assert!(!partial.contains_key("disp_0079.exr"), "the bake finished before it was killed");
+
+    let mut resume = args(&killed);
+    resume.push("--resume".into());
+    let o = Command::new(SWELL).args(&resume).output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("already complete"), "{}", stderr(&o));
+    let o = Command::new(SWELL).args(args(&whole)).output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+
+    let (resumed, whole) = (files(&killed), files(&whole));
+    assert_eq!(whole.len(), 1 + 80 * 4);
+    assert_eq!(resumed.keys().collect::<Vec<_>>(), whole.keys().collect::<Vec<_>>());
+    for (name, bytes) in &whole {
+        assert!(&resumed[name] == bytes, "{name} differs after kill + resume");
+    }
+    // Complete frames from before the kill were kept, not rewritten with other bytes.
+    for (name, bytes) in &partial {
+        assert!(&whole[name] == bytes, "{name} written before the kill differs");
+    }
+}
+
+#[test]
+fn three_shards_together_equal_the_whole_bake() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 24);
+    let scene = scene.to_str().unwrap();
+    let (sharded, whole) = (tmp.path().join("sharded"), tmp.path().join("whole"));
+    for shard in ["2/3", "0/3", "1/3"] {
+        let o = swell(&[
+            "bake",
+            "--scene",
+            scene,
+            "--frames",
+            "5..14",
+            "--fps",
+            "30",
+            "--shard",
+            shard,
+            "--out",
+            sharded.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let o = swell(&["bake", "--scene", scene, "--frames", "5..14", "--fps", "30", "--out", whole.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (sharded, whole) = (files(&sharded), files(&whole));
+    assert_eq!(whole.len(), 1 + 10 * 2);
+    assert!(sharded == whole, "shards differ from the whole bake");
+}
+
+#[test]
+fn bad_frame_ranges_and_unwritable_outputs_are_clear_errors_and_write_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 8);
+    let scene = scene.to_str().unwrap();
+    let out = tmp.path().join("out");
+    let out_s = out.to_str().unwrap();
+    for (frames, expect) in [
+        ("9..3", "ends before it starts"),
+        ("abc", "is not A..B"),
+        ("-2..5", "is not A..B"),
+        ("2..", "is not A..B"),
+        ("1.5..3", "is not A..B"),
+        ("0..99999999999", "is outside"),
+    ] {
+        let o = swell(&["bake", "--scene", scene, "--frames", frames, "--out", out_s]);
+        assert!(!o.status.success(), "--frames {frames} was accepted");
+        let e = stderr(&o);
+        assert!(e.contains("--frames") && e.contains(expect), "--frames {frames}: {e}");
+        assert!(!out.exists(), "--frames {frames} left output behind");
+    }
+    for (args, expect) in [
+        (vec!["--shard", "3/3"], "--shard index = 3 is outside [0, 2]"),
+        (vec!["--fps", "0"], "--fps = 0 is outside"),
+        (vec!["--png", "12"], "--png"),
+        (vec!["--exr-compression", "lzw"], "--exr-compression"),
+    ] {
+        let mut a = vec!["bake", "--scene", scene, "--frames", "0..2", "--out", out_s];
+        a.extend(args.iter());
+        let o = swell(&a);
+        assert!(!o.status.success() && stderr(&o).contains(expect), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists());
+    }
+    // A directory that cannot be created (its parent is a file): the error names the path.
+    let file = tmp.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let under_file = file.join("bake");
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..2", "--out", under_file.to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains(under_file.to_str().unwrap()), "{}", stderr(&o));
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..2", "--out", file.to_str().unwrap()]);
+    assert!(!o.status.success() && stderr(&o).contains("not a directory"), "{}", stderr(&o));
+    let o = swell(&["export", "--scene", scene, "--out", under_file.join("x.glb").to_str().unwrap()]);
+    assert!(!o.status.success() && stderr(&o).contains("does not exist"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&file).unwrap(), b"x");
+}
+
+#[test]
+fn resume_refuses_a_directory_baked_with_other_settings() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 8);
+    let scene = scene.to_str().unwrap();
+    let out = tmp.path().join("out");
+    let out_s = out.to_str().unwrap();
+    assert!(swell(&["bake", "--scene", scene, "--frames", "0..3", "--out", out_s]).status.success());
+    let before = files(&out);
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..3", "--fps", "30", "--resume", "--out", out_s]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("`fps` differs"), "{}", stderr(&o));
+    assert!(files(&out) == before, "a refused resume changed the bake");
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..3", "--resume", "--out", out_s]);
+    assert!(o.status.success() && stderr(&o).contains("4 frames already complete"), "{}", stderr(&o));
+}
+
+#[test]
+fn export_writes_every_format_and_one_file_per_frame() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 16);
+    let scene = scene.to_str().unwrap();
+    let d = tmp.path();
+    let p = |name: &str| d.join(name).to_str().unwrap().to_string();
+    for (out, format) in [("a.obj", None), ("b.gltf", None), ("c.glb", None), ("d.mesh", Some("glb"))] {
+        let mut a = vec!["export", "--scene", scene, "--time", "1.5", "--out"];
+        let out_path = p(out);
+        a.push(&out_path);
+        if let Some(f) = format {
+            a.extend(["--format", f]);
+        }
+        let o = swell(&a);
+        assert!(o.status.success(), "{out}: {}", stderr(&o));
+    }
+    let obj = std::fs::read_to_string(d.join("a.obj")).unwrap();
+    assert_eq!(obj.lines().filter(|l| l.starts_with("v ")).count(), 17 * 17);
+    assert_eq!(obj.lines().filter(|l| l.starts_with("f ")).count(), 2 * 16 * 16);
+    assert!(d.join("b.bin").is_file());
+    assert_eq!(&std::fs::read(d.join("d.mesh")).unwrap()[..4], b"glTF");
+    assert_eq!(std::fs::read(d.join("c.glb")).unwrap(), std::fs::read(d.join("d.mesh")).unwrap());
+
+    let o = swell(&["export", "--scene", scene, "--frames", "8..10", "--fps", "12", "--out", &p("seq.gltf")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for k in 8..=10 {
+        assert!(d.join(format!("seq_{k:04}.gltf")).is_file() && d.join(format!("seq_{k:04}.bin")).is_file());
+    }
+    // Frame 9 at 12 fps is time 0.75 s: the same bytes as a single export at --time 0.75.
+    let o = swell(&["export", "--scene", scene, "--time", "0.75", "--out", &p("single.gltf")]);
+    assert!(o.status.success());
+    assert_eq!(std::fs::read(d.join("seq_0009.bin")).unwrap(), std::fs::read(d.join("single.bin")).unwrap());
+
+    for (args, expect) in [
+        (vec!["--out", "x.stl"], "--out"),
+        (vec!["--out", "x.obj", "--format", "fbx"], "--format"),
+        (vec!["--out", "x.obj", "--frames", "3..1"], "--frames"),
+    ] {
+        let mut a = vec!["export", "--scene", scene];
+        a.extend(args.iter());
+        let o = swell(&a);
+        assert!(!o.status.success() && stderr(&o).contains(expect), "{args:?}: {}", stderr(&o));
+    }
+}

@@ -1,0 +1,558 @@
+//! Baking a water model into map sequences, like Blender's ocean bake: per frame a displacement,
+//! a normal and (where the model has foam) a foam map, as float EXR and optionally PNG.
+//!
+//! A bake directory holds `bake.json` ([`BakeManifest`]) and, for each frame `k` (file names use
+//! at least four digits, `{k:04}`):
+//!
+//! | file | content |
+//! |---|---|
+//! | `disp_{k:04}.exr` | RGB `f32`: displacement (x, y, z) in metres of each grid point from its rest position (x, 0, z); height is G |
+//! | `normal_{k:04}.exr` | RGB `f32`: unit normal (x, y, z) |
+//! | `foam_{k:04}.exr` | `Y` `f32`: foam coverage in [0, 1] (only when the model has foam) |
+//! | `*_{k:04}.png` | the same as 8- or 16-bit PNG (only with `png_bits`), encoded as `bake.json` says |
+//!
+//! Pixel (i, j) is grid vertex (i, j) (see [`super::write_exr_rgb`] for orientation).
+//!
+//! Long bakes: every file is written atomically, so a file that exists is complete, and a frame
+//! is complete when all its files exist; [`BakeSettings::resume`] skips complete frames, and a
+//! [`Shard`] bakes every N-th frame, so batch systems can split a bake over machines. The output
+//! depends only on the scene and the settings, never on threads, shards or interruptions.
+//!
+//! Speed: frames are simulated in order (time-stepped models need that) in batches, and each
+//! batch is encoded and written in parallel while the next is simulated.
+//!
+//! ```
+//! use swell::export::{Bake, BakeSettings, FrameRange};
+//! use swell::scene::{preset, World};
+//!
+//! let mut scene = preset("sea")?;
+//! scene.water.as_mut().unwrap().surface.cells = [32, 32];
+//! let mut world = World::new(scene)?;
+//! let dir = tempfile::tempdir().unwrap();
+//! // Frames 0 to 2 (inclusive) at 24 fps, with 16-bit PNGs beside the EXRs.
+//! let mut settings = BakeSettings::new(FrameRange::new("frames", 0, 2)?);
+//! settings.png_bits = Some(16);
+//! let bake = Bake::prepare(&mut world, dir.path(), settings)?;
+//! bake.run(&mut world, &|frame| println!("frame {frame} done"))?;
+//! assert!(dir.path().join("disp_0002.exr").is_file() && dir.path().join("bake.json").is_file());
+//! assert_eq!(bake.manifest().grid.pixels, [33, 33]);
+//! # Ok::<(), swell::Error>(())
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::bake_manifest::{BakeGrid, BakeManifest, BakeMap, BakePng};
+use super::frame_range::{FrameRange, Shard};
+use super::{write_atomically, write_exr_gray, write_exr_rgb, write_png_map, ExrCompression};
+use crate::error::{Error, Result};
+use crate::math::GridSpec;
+use crate::scene::World;
+
+/// Highest frame rate a bake accepts, frames per second.
+pub const MAX_FPS: f64 = 1000.0;
+
+/// Smallest automatic PNG displacement range, metres (a flat sea still gets a usable scale).
+pub const MIN_PNG_RANGE_M: f32 = 0.01;
+
+/// Headroom of the automatic PNG displacement range over the first frame's largest component:
+/// later frames of a stationary sea rarely exceed the first by more than this.
+pub const PNG_RANGE_HEADROOM: f32 = 1.5;
+
+/// What to bake and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BakeSettings {
+    /// All frames of the bake (each shard bakes a subset).
+    pub frames: FrameRange,
+    /// Frames per second, in (0, [`MAX_FPS`]]: frame k is time k / fps seconds. Default 24.
+    pub fps: f64,
+    /// Which frames this run bakes. Default: all.
+    pub shard: Shard,
+    /// Skip frames whose files all exist, after checking `bake.json` describes the same bake.
+    pub resume: bool,
+    /// Also write PNG maps of this many bits per sample (8 or 16).
+    pub png_bits: Option<u8>,
+    /// PNG displacement range R (m, > 0): components map from [-R, R]. Default: the first frame's
+    /// largest absolute component times [`PNG_RANGE_HEADROOM`], rounded up to two significant
+    /// digits, at least [`MIN_PNG_RANGE_M`].
+    pub png_range_m: Option<f32>,
+    /// EXR compression. Default none (fastest).
+    pub compression: ExrCompression,
+    /// The model's loop period in seconds, if it has one (recorded in `bake.json`).
+    pub loop_period_s: Option<f64>,
+    /// Maps of `cells` pixels per side instead of `cells + 1`: the last column and row, which
+    /// repeat the first ones when the model is periodic over the patch (FFT ocean), are left out,
+    /// so the maps tile with wrap-around sampling (a 512-cell ocean gives 512 x 512 maps).
+    pub tile: bool,
+}
+
+impl BakeSettings {
+    /// Settings for `frames` with every default.
+    pub fn new(frames: FrameRange) -> Self {
+        Self {
+            frames,
+            fps: 24.0,
+            shard: Shard::WHOLE,
+            resume: false,
+            png_bits: None,
+            png_range_m: None,
+            compression: ExrCompression::None,
+            loop_period_s: None,
+            tile: false,
+        }
+    }
+
+    /// Checks every field; keys are named as the CLI options.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= MAX_FPS) {
+            return Err(Error::out_of_range("--fps", self.fps, format!("(0, {MAX_FPS}]")));
+        }
+        if let Some(b) = self.png_bits {
+            if b != 8 && b != 16 {
+                return Err(Error::invalid("--png", format!("{b} bits; valid: 8 or 16")));
+            }
+        }
+        if let Some(r) = self.png_range_m {
+            crate::error::check_positive("--png-range", r)?;
+        }
+        if let Some(p) = self.loop_period_s {
+            if !(p.is_finite() && p > 0.0) {
+                return Err(Error::out_of_range("loop period", p, "(0, inf) seconds"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The loop period (s) of the world's water model, if it repeats exactly.
+///
+/// Taken from the scene: `tessendorf` (and `fft`) models with a `loop_period` key.
+pub fn model_loop_period(world: &World) -> Option<f64> {
+    world.scene.water.as_ref().and_then(|w| w.model.loop_period())
+}
+
+/// One map kind of a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum MapKind {
+    Disp,
+    Normal,
+    Foam,
+}
+
+impl MapKind {
+    fn name(self) -> &'static str {
+        match self {
+            MapKind::Disp => "disp",
+            MapKind::Normal => "normal",
+            MapKind::Foam => "foam",
+        }
+    }
+}
+
+/// A bake ready to run: settings checked, directory and `bake.json` written, frames to do known.
+pub struct Bake {
+    dir: PathBuf,
+    settings: BakeSettings,
+    manifest: BakeManifest,
+    maps: Vec<MapKind>,
+    grid: GridSpec,
+    png_range_m: f32,
+    todo: Vec<u32>,
+    skipped: usize,
+}
+
+/// The fields of one frame, captured from the world so the world can move on.
+struct FrameFields {
+    frame: u32,
+    disp: Vec<Vec3>,
+    normal: Vec<Vec3>,
+    foam: Vec<f32>,
+}
+
+impl Bake {
+    /// Checks `settings`, moves `world` to the first frame of the range (which fixes whether there
+    /// is foam and the automatic PNG range, identically for every shard), creates `dir` and
+    /// writes `dir/bake.json`, and lists the frames still to bake.
+    ///
+    /// Nothing is written if anything is wrong; with `resume`, a `bake.json` from different
+    /// settings is an error.
+    pub fn prepare(world: &mut World, dir: &Path, settings: BakeSettings) -> Result<Self> {
+        settings.validate()?;
+        let spec = world
+            .scene
+            .water
+            .clone()
+            .ok_or_else(|| Error::invalid("water", "the scene has no [water] section: there is nothing to bake"))?;
+        world.update(f64::from(settings.frames.first) / settings.fps)?;
+        let water = world.water.as_ref().expect("a scene with [water] builds a water body");
+        let grid = water.mesh.grid;
+        let mut maps = vec![MapKind::Disp, MapKind::Normal];
+        if water.mesh.has_foam {
+            maps.push(MapKind::Foam);
+        }
+        let png_range_m = match settings.png_range_m {
+            Some(r) => r,
+            None => auto_png_range(&water.mesh.positions, &grid),
+        };
+        let manifest = manifest(&spec.to_table(), &grid, &settings, &maps, png_range_m);
+
+        if dir.exists() && !dir.is_dir() {
+            return Err(Error::invalid("--out", format!("{} exists and is not a directory", dir.display())));
+        }
+        let manifest_path = dir.join("bake.json");
+        if settings.resume {
+            check_same_bake(&manifest_path, &manifest)?;
+        }
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let json = manifest_json(&manifest);
+        write_atomically(&manifest_path, |out| out.write_all(&json).map_err(|e| Error::io(&manifest_path, e)))?;
+
+        let mut bake = Bake { dir: dir.into(), settings, manifest, maps, grid, png_range_m, todo: vec![], skipped: 0 };
+        for frame in bake.settings.shard.frames(bake.settings.frames) {
+            if bake.settings.resume && bake.frame_files(frame).iter().all(|p| p.is_file()) {
+                bake.skipped += 1;
+            } else {
+                bake.todo.push(frame);
+            }
+        }
+        Ok(bake)
+    }
+
+    /// The manifest written as `bake.json`.
+    pub fn manifest(&self) -> &BakeManifest {
+        &self.manifest
+    }
+
+    /// Frames this run will bake, in order.
+    pub fn frames_to_bake(&self) -> &[u32] {
+        &self.todo
+    }
+
+    /// Frames of this shard skipped because they were complete (`resume`).
+    pub fn skipped(&self) -> usize {
+        self.skipped
+    }
+
+    /// Map width and height in pixels.
+    fn map_size(&self) -> (usize, usize) {
+        map_size(&self.grid, self.settings.tile)
+    }
+
+    /// Every file of `frame`, under its final name.
+    pub fn frame_files(&self, frame: u32) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = self.maps.iter().map(|m| self.file(*m, frame, "exr")).collect();
+        if self.settings.png_bits.is_some() {
+            files.extend(self.maps.iter().map(|m| self.file(*m, frame, "png")));
+        }
+        files
+    }
+
+    fn file(&self, map: MapKind, frame: u32, ext: &str) -> PathBuf {
+        self.dir.join(format!("{}_{frame:04}.{ext}", map.name()))
+    }
+
+    /// Bakes the remaining frames; `on_frame(k)` is called (from any thread) once all files of
+    /// frame k are written. `world` must be the one given to [`Bake::prepare`].
+    pub fn run(&self, world: &mut World, on_frame: &(dyn Fn(u32) + Sync)) -> Result<()> {
+        if self.todo.is_empty() {
+            return Ok(());
+        }
+        let batch = (2 * rayon::current_num_threads()).max(2);
+        let n = self.map_size().0 * self.map_size().1;
+        let alloc = || -> Vec<FrameFields> {
+            (0..batch.min(self.todo.len()))
+                .map(|_| FrameFields {
+                    frame: 0,
+                    disp: vec![Vec3::ZERO; n],
+                    normal: vec![Vec3::ZERO; n],
+                    foam: vec![0.0; if self.maps.contains(&MapKind::Foam) { n } else { 0 }],
+                })
+                .collect()
+        };
+        let (mut ready, mut next) = (alloc(), alloc());
+        let chunks: Vec<&[u32]> = self.todo.chunks(batch).collect();
+        self.capture_batch(world, chunks[0], &mut ready)?;
+        for (k, chunk) in chunks.iter().enumerate() {
+            // Encode and write this batch while the next one is simulated.
+            let (written, captured) = rayon::join(
+                || ready[..chunk.len()].par_iter().try_for_each(|f| self.write_frame(f).map(|()| on_frame(f.frame))),
+                || match chunks.get(k + 1) {
+                    Some(c) => self.capture_batch(world, c, &mut next),
+                    None => Ok(()),
+                },
+            );
+            written?;
+            captured?;
+            std::mem::swap(&mut ready, &mut next);
+        }
+        Ok(())
+    }
+
+    fn capture_batch(&self, world: &mut World, frames: &[u32], out: &mut [FrameFields]) -> Result<()> {
+        for (&frame, fields) in frames.iter().zip(out.iter_mut()) {
+            self.capture(world, frame, fields)?;
+        }
+        Ok(())
+    }
+
+    /// Moves the world to `frame` and copies its fields out; refuses non-finite values.
+    fn capture(&self, world: &mut World, frame: u32, out: &mut FrameFields) -> Result<()> {
+        let t = f64::from(frame) / self.settings.fps;
+        world.update(t)?;
+        let mesh = &world.water.as_ref().expect("checked in prepare").mesh;
+        out.frame = frame;
+        let width = self.map_size().0;
+        displacement(&mesh.positions, &self.grid, width, &mut out.disp);
+        copy_rows(&mesh.normals, self.grid.verts_x(), width, &mut out.normal);
+        if !out.foam.is_empty() {
+            copy_rows(&mesh.foam, self.grid.verts_x(), width, &mut out.foam);
+        }
+        let finite = out.disp.par_iter().chain(out.normal.par_iter()).all(|v| v.is_finite())
+            && out.foam.par_iter().all(|f| f.is_finite());
+        if !finite {
+            return Err(Error::Unstable(format!(
+                "frame {frame} (t = {t} s) has non-finite displacement, normal or foam"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Writes every file of one frame, the files in parallel, each atomically.
+    fn write_frame(&self, f: &FrameFields) -> Result<()> {
+        let (w, h) = self.map_size();
+        let compression = self.settings.compression;
+        let mut jobs: Vec<(MapKind, bool)> = self.maps.iter().map(|&m| (m, false)).collect();
+        if self.settings.png_bits.is_some() {
+            jobs.extend(self.maps.iter().map(|&m| (m, true)));
+        }
+        jobs.par_iter().try_for_each(|&(map, png)| {
+            let path = self.file(map, f.frame, if png { "png" } else { "exr" });
+            match (map, png) {
+                (MapKind::Disp, false) => write_exr_rgb(&path, w, h, &f.disp, compression),
+                (MapKind::Normal, false) => write_exr_rgb(&path, w, h, &f.normal, compression),
+                (MapKind::Foam, false) => write_exr_gray(&path, w, h, &f.foam, compression),
+                (_, true) => self.write_png(&path, map, f),
+            }
+        })
+    }
+
+    fn write_png(&self, path: &Path, map: MapKind, f: &FrameFields) -> Result<()> {
+        let (w, h) = (self.map_size().0 as u32, self.map_size().1 as u32);
+        let bits = self.settings.png_bits.expect("only called with PNGs on");
+        let unit = |v: f32, r: f32| 0.5 * (v / r + 1.0);
+        match map {
+            MapKind::Disp => {
+                let r = self.png_range_m;
+                let s: Vec<f32> = f.disp.iter().flat_map(|d| d.to_array().map(|c| unit(c, r))).collect();
+                write_png_map(path, w, h, 3, bits, &s)
+            }
+            MapKind::Normal => {
+                let s: Vec<f32> = f.normal.iter().flat_map(|n| n.to_array().map(|c| unit(c, 1.0))).collect();
+                write_png_map(path, w, h, 3, bits, &s)
+            }
+            MapKind::Foam => write_png_map(path, w, h, 1, bits, &f.foam),
+        }
+    }
+}
+
+/// Map width and height in pixels: vertices per side, or cells per side when `tile`.
+fn map_size(grid: &GridSpec, tile: bool) -> (usize, usize) {
+    if tile {
+        (grid.cells_x as usize, grid.cells_z as usize)
+    } else {
+        (grid.verts_x(), grid.verts_z())
+    }
+}
+
+/// Copies the first `width` values of each row of `src` (rows of `stride`) into `out` (rows of
+/// `width`), as many rows as `out` holds.
+fn copy_rows<T: Copy + Send + Sync>(src: &[T], stride: usize, width: usize, out: &mut [T]) {
+    out.par_chunks_mut(width).zip(src.par_chunks(stride)).for_each(|(o, s)| o.copy_from_slice(&s[..width]));
+}
+
+/// Writes `positions[v] - rest(v)` for the first `width` vertices of each row, as many rows as
+/// `out` holds, rows in parallel.
+fn displacement(positions: &[Vec3], grid: &GridSpec, width: usize, out: &mut [Vec3]) {
+    let nx = grid.verts_x();
+    out.par_chunks_mut(width).zip(positions.par_chunks(nx)).enumerate().for_each(|(j, (d, p))| {
+        for (i, (d, p)) in d.iter_mut().zip(p).enumerate() {
+            let r = grid.rest_position(i, j);
+            *d = *p - Vec3::new(r.x, 0.0, r.y);
+        }
+    });
+}
+
+/// The automatic PNG displacement range: see [`BakeSettings::png_range_m`].
+fn auto_png_range(positions: &[Vec3], grid: &GridSpec) -> f32 {
+    let mut d = vec![Vec3::ZERO; positions.len()];
+    displacement(positions, grid, grid.verts_x(), &mut d);
+    let max = d.iter().map(|v| v.abs().max_element()).filter(|m| m.is_finite()).fold(0.0f32, f32::max);
+    round_up_2_digits(max * PNG_RANGE_HEADROOM).max(MIN_PNG_RANGE_M)
+}
+
+/// Rounds a positive `x` up to two significant decimal digits (1.234 -> 1.3), so the range in
+/// `bake.json` reads as a plain number.
+fn round_up_2_digits(x: f32) -> f32 {
+    if !(x > 0.0 && x.is_finite()) {
+        return 0.0;
+    }
+    let scale = 10f64.powi(1 - f64::from(x).log10().floor() as i32);
+    ((f64::from(x) * scale).ceil() / scale) as f32
+}
+
+fn manifest(
+    water: &toml::Table,
+    grid: &GridSpec,
+    s: &BakeSettings,
+    maps: &[MapKind],
+    png_range_m: f32,
+) -> BakeManifest {
+    let mut params = water.clone();
+    params.remove("material");
+    let model = params.get("model").and_then(|m| m.as_str()).unwrap_or("unknown").to_string();
+    let seed = params.get("seed").and_then(|v| v.as_integer()).and_then(|i| u64::try_from(i).ok());
+    let loop_frames = s.loop_period_s.and_then(|p| {
+        let n = p * s.fps;
+        ((n - n.round()).abs() < 1e-6 * n.max(1.0)).then_some(n.round() as u64)
+    });
+    let png_pattern = |m: MapKind| s.png_bits.map(|_| format!("{}_{{frame:04}}.png", m.name()));
+    BakeManifest {
+        swell_version: env!("CARGO_PKG_VERSION").into(),
+        model,
+        model_params: shortest_floats(serde_json::to_value(&params).expect("TOML values convert to JSON")),
+        seed,
+        grid: BakeGrid {
+            cells: [grid.cells_x, grid.cells_z],
+            pixels: [map_size(grid, s.tile).0 as u32, map_size(grid, s.tile).1 as u32],
+            tile: s.tile,
+            origin_m: grid.origin.to_array(),
+            size_m: grid.size.to_array(),
+            spacing_m: grid.spacing().to_array(),
+            layout: "pixel (i, j) = grid vertex (i, j) resting at origin_m + (i, j) * spacing_m; columns run along +X, \
+                     rows (top to bottom) along +Z; mesh uv = (i / cells[0], j / cells[1])"
+                .into(),
+        },
+        fps: s.fps,
+        frames: [s.frames.first, s.frames.last],
+        loop_period_s: s.loop_period_s,
+        loop_frames,
+        maps: maps
+            .iter()
+            .map(|&m| BakeMap {
+                name: m.name().into(),
+                exr: format!("{}_{{frame:04}}.exr", m.name()),
+                png: png_pattern(m),
+                channels: match m {
+                    MapKind::Disp => "R, G, B = displacement x, y (height), z in metres from the rest position (x, 0, z)",
+                    MapKind::Normal => "R, G, B = unit normal x, y, z",
+                    MapKind::Foam => "Y = foam coverage in [0, 1]",
+                }
+                .into(),
+            })
+            .collect(),
+        exr_compression: s.compression,
+        png: s.png_bits.map(|bits| BakePng {
+            bits,
+            displacement_range_m: png_range_m,
+            encoding: format!(
+                "sample s in [0, {max}]; disp: component = (2 s / {max} - 1) * displacement_range_m (clamped to that range); \
+                 normal: component = 2 s / {max} - 1; foam: coverage = s / {max}",
+                max = (1u32 << bits) - 1
+            ),
+        }),
+    }
+}
+
+/// The text of `bake.json`. It is compared byte for byte on `--resume`, so it must be a pure
+/// function of the manifest.
+fn manifest_json(manifest: &BakeManifest) -> Vec<u8> {
+    let value = shortest_floats(serde_json::to_value(manifest).expect("the manifest always serialises"));
+    let mut text = serde_json::to_vec_pretty(&value).expect("a JSON value always serialises");
+    text.push(b'\n');
+    text
+}
+
+/// Most values are `f32` (scene parameters, grid): print those in their shortest `f32` form
+/// (0.576, not 0.5759999752044678), which reads back to the same `f32`. Values that are not exactly
+/// an `f32` (an `f64` frame rate such as 1/3) keep every digit.
+fn shortest_floats(v: serde_json::Value) -> serde_json::Value {
+    use serde_json::Value;
+    match v {
+        Value::Number(n) if n.is_f64() => {
+            let f = n.as_f64().expect("checked");
+            if f64::from(f as f32) != f {
+                return Value::Number(n);
+            }
+            (f as f32)
+                .to_string()
+                .parse::<f64>()
+                .ok()
+                .and_then(serde_json::Number::from_f64)
+                .map_or(Value::Number(n), Value::Number)
+        }
+        Value::Array(a) => Value::Array(a.into_iter().map(shortest_floats).collect()),
+        Value::Object(o) => Value::Object(o.into_iter().map(|(k, v)| (k, shortest_floats(v))).collect()),
+        other => other,
+    }
+}
+
+/// With `--resume`, refuses to continue a bake made with other settings.
+fn check_same_bake(path: &Path, manifest: &BakeManifest) -> Result<()> {
+    let old = match std::fs::read(path) {
+        Ok(bytes) => bytes,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    let new = manifest_json(manifest);
+    if old != new {
+        // Both texts go through the same parser, so only real differences show.
+        let parse = |text: &[u8]| {
+            serde_json::from_slice::<serde_json::Value>(text)
+                .map_err(|e| Error::Parse { path: path.display().to_string(), message: e.to_string() })
+        };
+        let (old, new) = (parse(&old)?, parse(&new)?);
+        let key = first_difference(&old, &new, String::new());
+        return Err(Error::invalid(
+            "--resume",
+            format!(
+                "{} describes a different bake (`{key}` differs); bake into a new directory, or drop --resume to overwrite",
+                path.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The key path of the first difference between two JSON values.
+fn first_difference(a: &serde_json::Value, b: &serde_json::Value, at: String) -> String {
+    use serde_json::Value::Object;
+    if let (Object(a), Object(b)) = (a, b) {
+        for (k, va) in a {
+            let path = if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
+            match b.get(k) {
+                Some(vb) if vb == va => {}
+                Some(vb) => return first_difference(va, vb, path),
+                None => return path,
+            }
+        }
+        if let Some(k) = b.keys().find(|k| !a.contains_key(*k)) {
+            return if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
+        }
+    }
+    at
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn png_ranges_round_up_to_two_digits() {
+        assert_eq!(round_up_2_digits(1.234), 1.3);
+        assert_eq!(round_up_2_digits(0.0456), 0.046);
+        assert_eq!(round_up_2_digits(12.0), 12.0);
+        assert_eq!(round_up_2_digits(0.0), 0.0);
+    }
+}

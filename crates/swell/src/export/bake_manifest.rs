@@ -1,0 +1,84 @@
+//! `bake.json`: what a bake directory holds and how to read it, written once per bake.
+
+use serde::{Deserialize, Serialize};
+
+use super::ExrCompression;
+
+/// The manifest of a bake directory, stored as `DIR/bake.json`.
+///
+/// It holds everything that determines the frames' bytes and nothing else (no dates, no paths), so
+/// every shard of a bake writes the same manifest and `--resume` can check it is continuing the
+/// same bake.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BakeManifest {
+    /// Version of swell that baked (`CARGO_PKG_VERSION`).
+    pub swell_version: String,
+    /// The water model (`water.model` of the scene: `gerstner`, `sines`, ...).
+    pub model: String,
+    /// The model's and patch's keys from the scene's `[water]` section, as JSON.
+    pub model_params: serde_json::Value,
+    /// The model's random seed (`water.seed`), if it has one.
+    pub seed: Option<u64>,
+    /// The sampling grid the maps are pixels of.
+    pub grid: BakeGrid,
+    /// Frames per second: frame `k` is time `k / fps` seconds.
+    pub fps: f64,
+    /// First and last frame of the whole bake (inclusive; shards bake subsets of it).
+    pub frames: [u32; 2],
+    /// Period (s) after which the model repeats exactly, if it has one.
+    pub loop_period_s: Option<f64>,
+    /// `loop_period_s * fps` when that is a whole number: bake frames `0..loop_frames - 1` for a
+    /// seamless loop (frame `loop_frames` equals frame 0).
+    pub loop_frames: Option<u64>,
+    /// The maps written per frame.
+    pub maps: Vec<BakeMap>,
+    /// Compression of the EXR files (all lossless).
+    pub exr_compression: ExrCompression,
+    /// The PNG versions, if `--png` was given.
+    pub png: Option<BakePng>,
+}
+
+/// The grid of a bake: map pixel (i, j) is grid vertex (i, j).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BakeGrid {
+    /// Cells along x and z.
+    pub cells: [u32; 2],
+    /// Map width and height in pixels: vertices along x and z, `cells + 1` (the last column and
+    /// row repeat the first ones when the model tiles the patch), or `cells` when `tile`.
+    pub pixels: [u32; 2],
+    /// Whether the repeated last column and row were left out (`--tile`).
+    pub tile: bool,
+    /// World (x, z) of pixel (0, 0), metres.
+    pub origin_m: [f32; 2],
+    /// Patch extent along x and z, metres.
+    pub size_m: [f32; 2],
+    /// Pixel spacing along x and z, metres.
+    pub spacing_m: [f32; 2],
+    /// How pixels map to the world, in words.
+    pub layout: String,
+}
+
+/// One kind of map in the bake.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BakeMap {
+    /// Short name: `disp`, `normal` or `foam`.
+    pub name: String,
+    /// File name pattern, Python-format style: `disp_{frame:04}.exr`.
+    pub exr: String,
+    /// PNG file name pattern, if PNGs are written.
+    pub png: Option<String>,
+    /// EXR channels and what each holds.
+    pub channels: String,
+}
+
+/// How the PNG versions encode the float maps.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BakePng {
+    /// Bits per sample: 8 or 16.
+    pub bits: u8,
+    /// Displacement range R in metres: a component d is stored as `(d / R + 1) / 2` of full scale,
+    /// clamped, so `d = (2 * s / max - 1) * R` with `max = 2^bits - 1`.
+    pub displacement_range_m: f32,
+    /// The encodings, in words.
+    pub encoding: String,
+}
