@@ -20,6 +20,8 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes, one per line.
     Presets,
+    /// Open the interactive viewer (see docs/viewer.md).
+    View(ViewArgs),
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.
@@ -58,4 +60,17 @@ pub struct RenderArgs {
     /// depend on it.
     #[arg(long, value_name = "N")]
     pub threads: Option<u32>,
+}
+
+/// `swell view`.
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Save the window's content as PNG after --exit-after-frames frames, then exit.
+    #[arg(long, value_name = "FILE.png", requires = "exit_after_frames")]
+    pub screenshot: Option<PathBuf>,
+    /// Close the window after rendering N frames (for scripted checks), N >= 1.
+    #[arg(long, value_name = "N")]
+    pub exit_after_frames: Option<u32>,
 }

@@ -2,6 +2,7 @@
 
 mod presets;
 mod render;
+mod view;
 
 use swell::scene::{preset, Scene, MAX_THREADS};
 use swell::{Error, Result};
@@ -13,6 +14,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(a) => render::run(a),
         Command::Presets => presets::run(),
+        Command::View(a) => view::run(a),
     }
 }
 
