@@ -183,20 +183,28 @@ fn a_mouse_drag_turns_the_view_and_q_quits() {
         swell(&d).args(["view", "--preset", "sea"]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     // Wait until the window is mapped and has drawn water.
     let deadline = Instant::now() + STARTUP;
-    loop {
-        let found = Command::new("xdotool")
-            .env("DISPLAY", &d)
-            .args(["search", "--onlyvisible", "--name", "^swell"])
-            .output()
-            .is_ok_and(|o| o.status.success() && !o.stdout.is_empty());
-        if found && blue_fraction(&capture(&d, &dir.path().join("probe.png"))) > 0.8 {
-            break;
+    let window = loop {
+        let found =
+            Command::new("xdotool").env("DISPLAY", &d).args(["search", "--onlyvisible", "--name", "^swell"]).output();
+        let id = found
+            .ok()
+            .filter(|o| o.status.success())
+            .and_then(|o| String::from_utf8_lossy(&o.stdout).split_whitespace().next().map(str::to_owned));
+        let blue = id.as_ref().map(|_| blue_fraction(&capture(&d, &dir.path().join("probe.png"))));
+        if let (Some(id), Some(b)) = (&id, blue) {
+            if b > 0.8 {
+                break id.clone();
+            }
         }
-        assert!(Instant::now() < deadline, "the viewer window did not show water within {STARTUP:?}");
+        assert!(
+            Instant::now() < deadline,
+            "the viewer window did not show water within {STARTUP:?} (window {id:?}, blue fraction {blue:?})"
+        );
         std::thread::sleep(Duration::from_millis(500));
-    }
-    // Pointer over the view gives it the keyboard (no window manager: focus follows the pointer);
-    // space pauses, so only the camera can change the picture.
+    };
+    // Without a window manager nobody gives the window the keyboard: do it, then pause with space
+    // so that only the camera can change the picture.
+    xdotool(&d, &["windowfocus", "--sync", &window]);
     xdotool(&d, &["mousemove", "640", "360"]);
     xdotool(&d, &["key", "space"]);
     std::thread::sleep(Duration::from_millis(1500));

@@ -154,7 +154,7 @@ impl ViewerApp {
             (m, true) => Some(self.rig.wheel_zoom(&m.unwrap_or(cam), scroll)),
             (m, false) => m,
         };
-        if let Some(c) = moved.filter(|c| d != egui::Vec2::ZERO || scroll != 0.0 || *c != cam) {
+        if let Some(c) = moved.filter(|c| *c != cam) {
             self.move_camera(c);
         }
     }
