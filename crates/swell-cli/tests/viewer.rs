@@ -18,7 +18,7 @@ const SCREEN: &str = "1920x1080x24";
 const VIEW_W: u32 = 1280;
 const VIEW_H: u32 = 720;
 /// How long the viewer may take to open its window on a loaded two-core machine.
-const STARTUP: Duration = Duration::from_secs(90);
+const STARTUP: Duration = Duration::from_secs(180);
 
 static NEXT_DISPLAY: AtomicU32 = AtomicU32::new(99);
 
