@@ -29,6 +29,8 @@ pub enum Command {
     Export(ExportArgs),
     /// Bake displacement, normal and foam maps per frame (EXR, optionally PNG) into a directory.
     Bake(BakeArgs),
+    /// Open the interactive viewer (see docs/viewer.md).
+    View(ViewArgs),
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.
@@ -213,4 +215,17 @@ pub struct BakeArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// `swell view`.
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Save the window's content as PNG after --exit-after-frames frames, then exit.
+    #[arg(long, value_name = "FILE.png", requires = "exit_after_frames")]
+    pub screenshot: Option<PathBuf>,
+    /// Close the window after rendering N frames (for scripted checks), N >= 1.
+    #[arg(long, value_name = "N")]
+    pub exit_after_frames: Option<u32>,
 }

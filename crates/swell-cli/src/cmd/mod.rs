@@ -7,6 +7,7 @@ mod terrain;
 // issue 8: meshes and map bakes.
 mod bake;
 mod export;
+mod view;
 
 use swell::scene::{preset, Scene, MAX_THREADS};
 use swell::{Error, Result};
@@ -22,6 +23,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Bench(a) => bench::run(a),
         Command::Export(a) => export::run(a),
         Command::Bake(a) => bake::run(a),
+        Command::View(a) => view::run(a),
     }
 }
 

@@ -1,0 +1,18 @@
+//! `swell view`: the interactive viewer (crate `swell-viewer`), optionally scripted to take a
+//! screenshot and exit.
+
+use swell::Result;
+use swell_viewer::ViewerOptions;
+
+use super::load_scene;
+use crate::args::ViewArgs;
+
+pub fn run(a: ViewArgs) -> Result<()> {
+    let scene = load_scene(&a.source)?;
+    let source = match (&a.source.preset, &a.source.scene) {
+        (Some(name), _) => format!("preset {name}"),
+        (None, Some(path)) => path.display().to_string(),
+        (None, None) => unreachable!("clap requires one of --preset and --scene"),
+    };
+    swell_viewer::run(ViewerOptions { scene, source, screenshot: a.screenshot, exit_after_frames: a.exit_after_frames })
+}

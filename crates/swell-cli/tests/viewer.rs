@@ -1,0 +1,234 @@
+//! The viewer in a real X window: `swell view` under Xvfb draws water, a scripted mouse drag
+//! changes the view, and `q` quits.
+//!
+//! Needs `Xvfb`, `xdotool` and ImageMagick's `import` (see docs/viewer.md for the Debian packages).
+//! Without them the tests print why and pass, unless the environment variable `CI` is set: CI
+//! installs them, so there a missing tool is a failure.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::time::{Duration, Instant};
+
+use image::RgbaImage;
+
+/// Size of the virtual screen; the viewer's window (1280x720 view + panel) fits inside.
+const SCREEN: &str = "1920x1080x24";
+/// The view occupies the window's top-left 1280x720 pixels; the window opens at (0, 0).
+const VIEW_W: u32 = 1280;
+const VIEW_H: u32 = 720;
+/// How long the viewer may take to open its window on a loaded two-core machine.
+const STARTUP: Duration = Duration::from_secs(180);
+
+static NEXT_DISPLAY: AtomicU32 = AtomicU32::new(99);
+
+/// A running Xvfb, killed on drop.
+struct Xvfb {
+    child: Child,
+    display: String,
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn have(tool: &str) -> bool {
+    Command::new("sh")
+        .args(["-c", &format!("command -v {tool}")])
+        .stdout(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// Starts Xvfb on a free display, or returns None (after printing why) when the tools are missing
+/// outside CI. Panics in CI when they are missing.
+fn start_xvfb(tools: &[&str]) -> Option<Xvfb> {
+    let missing: Vec<_> = tools.iter().copied().filter(|t| !have(t)).collect();
+    if !missing.is_empty() {
+        let msg = format!("viewer test needs {} (apt-get install xvfb xdotool imagemagick)", missing.join(", "));
+        if std::env::var_os("CI").is_some() {
+            panic!("{msg}, and CI is set");
+        }
+        eprintln!("SKIPPED: {msg}");
+        return None;
+    }
+    for _ in 0..40 {
+        let n = NEXT_DISPLAY.fetch_add(1, Ordering::SeqCst);
+        if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+            continue;
+        }
+        let child = Command::new("Xvfb")
+            .args([format!(":{n}").as_str(), "-screen", "0", SCREEN, "-nolisten", "tcp"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("Xvfb starts");
+        let mut x = Xvfb { child, display: format!(":{n}") };
+        let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
+        let deadline = Instant::now() + Duration::from_secs(20);
+        while Instant::now() < deadline {
+            if let Ok(Some(_)) = x.child.try_wait() {
+                break; // display taken after all: try the next one
+            }
+            if socket.exists() {
+                return Some(x);
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        let _ = x.child.kill();
+    }
+    panic!("could not start Xvfb on any display :99..:139");
+}
+
+fn swell(display: &str) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_swell"));
+    c.env("DISPLAY", display).env_remove("WAYLAND_DISPLAY");
+    c
+}
+
+/// Waits for `child` with a deadline, killing it if it overruns.
+fn wait_with_timeout(mut child: Child, limit: Duration) -> Output {
+    let deadline = Instant::now() + limit;
+    loop {
+        if child.try_wait().expect("child status").is_some() {
+            return child.wait_with_output().expect("child output");
+        }
+        if Instant::now() > deadline {
+            let _ = child.kill();
+            let out = child.wait_with_output().expect("child output");
+            panic!("timed out after {limit:?}; stderr:\n{}", String::from_utf8_lossy(&out.stderr));
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+/// Fraction of the view's bottom half whose pixels are blue-ish (blue clearly above red), as water
+/// under a sky is.
+fn blue_fraction(img: &RgbaImage) -> f64 {
+    let mut blue = 0usize;
+    let mut total = 0usize;
+    for y in VIEW_H / 2..VIEW_H.min(img.height()) {
+        for x in 0..VIEW_W.min(img.width()) {
+            let p = img.get_pixel(x, y);
+            total += 1;
+            if p[2] as i32 > p[0] as i32 + 20 {
+                blue += 1;
+            }
+        }
+    }
+    blue as f64 / total.max(1) as f64
+}
+
+#[test]
+fn scripted_screenshot_shows_water() {
+    let Some(x) = start_xvfb(&["Xvfb"]) else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("shot.png");
+    let child = swell(&x.display)
+        .args(["view", "--preset", "sea", "--exit-after-frames", "30", "--screenshot"])
+        .arg(&shot)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let out = wait_with_timeout(child, STARTUP + Duration::from_secs(60));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "swell view failed: {stderr}");
+    assert!(stderr.contains("fps | sim"), "no timing summary: {stderr}");
+    let img = image::open(&shot).unwrap().to_rgba8();
+    // The whole window: view plus panel.
+    assert!(img.width() > VIEW_W && img.height() >= VIEW_H, "{}x{}", img.width(), img.height());
+    let f = blue_fraction(&img);
+    assert!(f > 0.8, "only {:.0} % of the lower view is water-blue", f * 100.0);
+}
+
+fn xdotool(display: &str, args: &[&str]) {
+    let s = Command::new("xdotool").env("DISPLAY", display).args(args).status().unwrap();
+    assert!(s.success(), "xdotool {args:?} failed");
+}
+
+/// Captures the whole X screen.
+fn capture(display: &str, path: &Path) -> RgbaImage {
+    let s = Command::new("import")
+        .env("DISPLAY", display)
+        .args(["-window", "root"])
+        .arg(format!("png:{}", path.display()))
+        .status()
+        .unwrap();
+    assert!(s.success(), "import failed");
+    image::open(path).unwrap().to_rgba8()
+}
+
+/// Mean absolute difference per channel over the view, 0..255.
+fn view_difference(a: &RgbaImage, b: &RgbaImage) -> f64 {
+    let mut sum = 0u64;
+    for y in 0..VIEW_H {
+        for x in 0..VIEW_W {
+            let (p, q) = (a.get_pixel(x, y), b.get_pixel(x, y));
+            sum += (0..3).map(|c| (p[c] as i32 - q[c] as i32).unsigned_abs() as u64).sum::<u64>();
+        }
+    }
+    sum as f64 / (3.0 * VIEW_W as f64 * VIEW_H as f64)
+}
+
+#[test]
+fn a_mouse_drag_turns_the_view_and_q_quits() {
+    let Some(x) = start_xvfb(&["Xvfb", "xdotool", "import"]) else { return };
+    let d = x.display.clone();
+    let dir = tempfile::tempdir().unwrap();
+    let child =
+        swell(&d).args(["view", "--preset", "sea"]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    // Wait until the window is mapped and has drawn water.
+    let deadline = Instant::now() + STARTUP;
+    let window = loop {
+        let found =
+            Command::new("xdotool").env("DISPLAY", &d).args(["search", "--onlyvisible", "--name", "^swell"]).output();
+        let id = found
+            .ok()
+            .filter(|o| o.status.success())
+            .and_then(|o| String::from_utf8_lossy(&o.stdout).split_whitespace().next().map(str::to_owned));
+        let blue = id.as_ref().map(|_| blue_fraction(&capture(&d, &dir.path().join("probe.png"))));
+        if let (Some(id), Some(b)) = (&id, blue) {
+            if b > 0.8 {
+                break id.clone();
+            }
+        }
+        assert!(
+            Instant::now() < deadline,
+            "the viewer window did not show water within {STARTUP:?} (window {id:?}, blue fraction {blue:?})"
+        );
+        std::thread::sleep(Duration::from_millis(500));
+    };
+    // Without a window manager nobody gives the window the keyboard: do it, then pause with space
+    // so that only the camera can change the picture.
+    xdotool(&d, &["windowfocus", "--sync", &window]);
+    xdotool(&d, &["mousemove", "640", "360"]);
+    xdotool(&d, &["key", "space"]);
+    std::thread::sleep(Duration::from_millis(1500));
+    let before = capture(&d, &dir.path().join("before.png"));
+    std::thread::sleep(Duration::from_millis(500));
+    let still = capture(&d, &dir.path().join("still.png"));
+    let noise = view_difference(&before, &still);
+    assert!(noise < 0.5, "paused view still changes: {noise}");
+
+    xdotool(&d, &["mousedown", "1"]);
+    for k in 1..=10 {
+        std::thread::sleep(Duration::from_millis(60));
+        let (px, py) = (640 + 20 * k, 360 + 4 * k);
+        xdotool(&d, &["mousemove", &px.to_string(), &py.to_string()]);
+    }
+    std::thread::sleep(Duration::from_millis(200));
+    xdotool(&d, &["mouseup", "1"]);
+    std::thread::sleep(Duration::from_millis(1500));
+    let after = capture(&d, &dir.path().join("after.png"));
+    let change = view_difference(&before, &after);
+    assert!(change > 5.0, "a 200-pixel orbit drag changed the view by only {change:.2} per channel");
+    assert!(blue_fraction(&after) > 0.5, "the turned view lost the water");
+
+    xdotool(&d, &["key", "q"]);
+    let out = wait_with_timeout(child, Duration::from_secs(30));
+    assert!(out.status.success(), "viewer exit: {}", String::from_utf8_lossy(&out.stderr));
+}

@@ -1,0 +1,377 @@
+//! The eframe application: panel on the right, status line at the bottom, the live view in the
+//! middle; keys and mouse; file requests; the scripted screenshot-and-exit mode.
+
+use std::cell::RefCell;
+use std::path::PathBuf;
+use std::rc::Rc;
+use std::time::Instant;
+
+use eframe::egui::{self, Color32, Key, PointerButton, Rect, Sense, ViewportCommand};
+use swell::{Error, Result};
+
+use crate::camera_control::CameraRig;
+use crate::clock::Clock;
+use crate::editor::SceneEditor;
+use crate::frame_stats::FrameStats;
+use crate::live_view::{FrameKey, LiveView};
+use crate::panels::files::{FileMessage, FileRequest};
+use crate::panels::{self, PanelOutput, PanelState};
+use crate::ViewerOptions;
+
+/// Width of the parameter panel, points.
+pub const PANEL_WIDTH: f32 = 430.0;
+
+/// Height of the status line, points.
+pub const STATUS_HEIGHT: f32 = 24.0;
+
+/// Frames to wait for the window's screenshot before falling back to the last rendered view.
+const SCREENSHOT_PATIENCE_FRAMES: u32 = 60;
+
+/// What a key does (paper 002's keys plus space and `r`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shortcut {
+    /// `q`: close the viewer.
+    Quit,
+    /// Space: play or pause.
+    TogglePlay,
+    /// `t`: wireframe overlay on or off.
+    ToggleWireframe,
+    /// `n`: normals overlay on or off.
+    ToggleNormals,
+    /// `r`: back to the scene's camera.
+    ResetCamera,
+}
+
+/// The key bindings, also listed in `docs/viewer.md`.
+pub const SHORTCUTS: &[(Key, Shortcut)] = &[
+    (Key::Q, Shortcut::Quit),
+    (Key::Space, Shortcut::TogglePlay),
+    (Key::T, Shortcut::ToggleWireframe),
+    (Key::N, Shortcut::ToggleNormals),
+    (Key::R, Shortcut::ResetCamera),
+];
+
+/// Why a screenshot was asked for, carried through egui's screenshot event.
+#[derive(Clone, Debug)]
+enum ScreenshotPurpose {
+    /// The panel's "Save window PNG".
+    Panel(PathBuf),
+    /// `--screenshot FILE` at the end of `--exit-after-frames`.
+    Exit(PathBuf),
+}
+
+/// Progress of `--exit-after-frames`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ExitState {
+    /// Rendering frames.
+    Running,
+    /// Screenshot asked for this many frames ago.
+    WaitingForScreenshot(u32),
+    /// Close sent.
+    Closing,
+}
+
+/// The viewer's whole state.
+pub struct ViewerApp {
+    editor: SceneEditor,
+    panels: PanelState,
+    clock: Clock,
+    rig: CameraRig,
+    view: LiveView,
+    stats: FrameStats,
+    options: ViewerOptions,
+    exit: ExitState,
+    last_frame: Option<Instant>,
+    /// Frames rendered since start (counts towards `--exit-after-frames`).
+    rendered: u32,
+    /// The last simulation or rendering error, shown in the status line.
+    run_error: Option<String>,
+    /// Where the scripted run's outcome goes, read by [`crate::run`] after the window closes.
+    outcome: Rc<RefCell<Option<Error>>>,
+}
+
+impl ViewerApp {
+    /// The viewer for `options.scene`; `outcome` receives any error of the scripted exit.
+    pub fn new(options: ViewerOptions, outcome: Rc<RefCell<Option<Error>>>) -> Result<Self> {
+        let editor = SceneEditor::new(options.scene.clone())?;
+        let rig = CameraRig::new(options.scene.camera);
+        Ok(Self {
+            editor,
+            panels: PanelState::default(),
+            clock: Clock::default(),
+            rig,
+            view: LiveView::new(),
+            stats: FrameStats::default(),
+            options,
+            exit: ExitState::Running,
+            last_frame: None,
+            rendered: 0,
+            run_error: None,
+            outcome,
+        })
+    }
+
+    fn handle_keys(&mut self, ctx: &egui::Context) {
+        if ctx.wants_keyboard_input() {
+            return;
+        }
+        for &(key, action) in SHORTCUTS {
+            if !ctx.input(|i| i.key_pressed(key)) {
+                continue;
+            }
+            match action {
+                Shortcut::Quit => ctx.send_viewport_cmd(ViewportCommand::Close),
+                Shortcut::TogglePlay => self.clock.toggle(),
+                Shortcut::ToggleWireframe => self.toggle_overlay(|r| &mut r.wireframe),
+                Shortcut::ToggleNormals => self.toggle_overlay(|r| &mut r.normals),
+                Shortcut::ResetCamera => self.move_camera(self.rig.home),
+            }
+        }
+    }
+
+    /// Flips an overlay switch of the scene's render settings (`t`, `n`) and applies it at once.
+    fn toggle_overlay(&mut self, flag: fn(&mut swell::scene::RenderSettings) -> &mut bool) {
+        *flag(&mut self.editor.draft.render) ^= true;
+        if let Err(e) = self.editor.apply() {
+            self.run_error = Some(e.to_string());
+        }
+    }
+
+    fn move_camera(&mut self, camera: swell::scene::Camera) {
+        if let Err(e) = self.editor.set_camera(camera) {
+            self.run_error = Some(e.to_string());
+        }
+    }
+
+    fn handle_mouse(&mut self, ui: &egui::Ui, response: &egui::Response) {
+        let cam = self.editor.scene().camera;
+        let d = response.drag_delta();
+        let moved = if response.dragged_by(PointerButton::Primary) {
+            Some(self.rig.drag_orbit(&cam, d.x, d.y))
+        } else if response.dragged_by(PointerButton::Secondary) {
+            Some(self.rig.drag_zoom(&cam, d.y))
+        } else if response.dragged_by(PointerButton::Middle) {
+            let ppp = ui.ctx().pixels_per_point();
+            let height_px = response.rect.height() * ppp;
+            Some(crate::camera_control::pan(&cam, d.x * ppp, d.y * ppp, height_px))
+        } else {
+            None
+        };
+        let scroll = if response.hovered() { ui.input(|i| i.smooth_scroll_delta.y) } else { 0.0 };
+        let moved = match (moved, scroll != 0.0) {
+            (m, true) => Some(self.rig.wheel_zoom(&m.unwrap_or(cam), scroll)),
+            (m, false) => m,
+        };
+        if let Some(c) = moved.filter(|c| *c != cam) {
+            self.move_camera(c);
+        }
+    }
+
+    fn handle_panel(&mut self, ctx: &egui::Context, out: PanelOutput) {
+        if out.revert {
+            self.editor.revert();
+        }
+        if out.scene_changed {
+            // A refusal is kept in the editor and shown at the top of the panel.
+            let _ = self.editor.apply();
+        }
+        if out.reset_camera {
+            self.move_camera(self.rig.home);
+        }
+        if let Some(request) = out.file {
+            let message = match request {
+                FileRequest::SaveScene(p) => self.editor.save(&p).map(|()| format!("saved {}", p.display())),
+                FileRequest::LoadScene(p) => self.editor.load(&p).map(|()| {
+                    self.rig = CameraRig::new(self.editor.scene().camera);
+                    format!("loaded {}", p.display())
+                }),
+                FileRequest::SaveView(p) => self.view.save_png(&p).map(|()| {
+                    let [w, h] = self.view.size();
+                    format!("saved the {w}x{h} view to {}", p.display())
+                }),
+                FileRequest::SaveWindow(p) => {
+                    ctx.send_viewport_cmd(ViewportCommand::Screenshot(egui::UserData::new(ScreenshotPurpose::Panel(
+                        p,
+                    ))));
+                    Ok("taking a screenshot of the window...".into())
+                }
+            };
+            self.panels.files.message = Some(match message {
+                Ok(m) => FileMessage::Done(m),
+                Err(e) => FileMessage::Failed(e.to_string()),
+            });
+        }
+    }
+
+    /// Saves window screenshots that arrived this frame.
+    fn handle_screenshots(&mut self, ctx: &egui::Context) {
+        let shots: Vec<_> = ctx.input(|i| {
+            i.raw
+                .events
+                .iter()
+                .filter_map(|e| match e {
+                    egui::Event::Screenshot { user_data, image, .. } => user_data
+                        .data
+                        .as_ref()
+                        .and_then(|d| d.downcast_ref::<ScreenshotPurpose>())
+                        .map(|p| (p.clone(), image.clone())),
+                    _ => None,
+                })
+                .collect()
+        });
+        for (purpose, image) in shots {
+            let [w, h] = image.size;
+            let result = |p: &PathBuf| crate::files::write_screenshot(p, w, h, image.as_raw());
+            match purpose {
+                ScreenshotPurpose::Panel(p) => {
+                    self.panels.files.message = Some(match result(&p) {
+                        Ok(()) => FileMessage::Done(format!("saved the {w}x{h} window to {}", p.display())),
+                        Err(e) => FileMessage::Failed(e.to_string()),
+                    });
+                }
+                ScreenshotPurpose::Exit(p) => {
+                    if let Err(e) = result(&p) {
+                        *self.outcome.borrow_mut() = Some(e);
+                    } else {
+                        eprintln!("swell view: saved the {w}x{h} window to {}", p.display());
+                    }
+                    self.close(ctx);
+                }
+            }
+        }
+    }
+
+    /// `--exit-after-frames`: after N rendered frames, screenshot (if asked) and close.
+    fn scripted_exit(&mut self, ctx: &egui::Context) {
+        let Some(n) = self.options.exit_after_frames else { return };
+        match self.exit {
+            ExitState::Running if self.rendered >= n => match self.options.screenshot.clone() {
+                Some(p) => {
+                    let data = egui::UserData::new(ScreenshotPurpose::Exit(p));
+                    ctx.send_viewport_cmd(ViewportCommand::Screenshot(data));
+                    self.exit = ExitState::WaitingForScreenshot(0);
+                }
+                None => self.close(ctx),
+            },
+            ExitState::WaitingForScreenshot(k) if k >= SCREENSHOT_PATIENCE_FRAMES => {
+                // The backend never answered: save what swell rendered instead, and say so.
+                let p = self.options.screenshot.clone().expect("waiting implies a screenshot path");
+                eprintln!("swell view: the window screenshot did not arrive; saving the rendered view instead");
+                if let Err(e) = self.view.save_png(&p) {
+                    *self.outcome.borrow_mut() = Some(e);
+                }
+                self.close(ctx);
+            }
+            ExitState::WaitingForScreenshot(k) => self.exit = ExitState::WaitingForScreenshot(k + 1),
+            _ => {}
+        }
+    }
+
+    fn close(&mut self, ctx: &egui::Context) {
+        if self.exit == ExitState::Closing {
+            return;
+        }
+        if let Some(m) = self.stats.mean() {
+            let [w, h] = self.view.size();
+            eprintln!(
+                "swell view: {} frames at {w}x{h}, mean after {} warm-up frames: {}",
+                self.stats.frames,
+                crate::frame_stats::WARMUP_FRAMES,
+                m.line()
+            );
+        }
+        self.exit = ExitState::Closing;
+        ctx.send_viewport_cmd(ViewportCommand::Close);
+    }
+
+    fn status_line(&self) -> String {
+        let [w, h] = self.view.size();
+        let mut s = format!(
+            "{:.1} fps | sim {:.1} ms | render {:.1} ms | upload {:.1} ms | view {w}x{h} | t = {:.2} s{}",
+            self.stats.fps(),
+            self.stats.recent.simulate * 1e3,
+            self.stats.recent.render * 1e3,
+            self.stats.recent.upload * 1e3,
+            self.clock.time,
+            if self.clock.playing { "" } else { " (paused)" },
+        );
+        let o = self.editor.scene().render;
+        if o.wireframe || o.normals {
+            s.push_str(" | overlays:");
+            if o.wireframe {
+                s.push_str(" wireframe");
+            }
+            if o.normals {
+                s.push_str(" normals");
+            }
+        }
+        s
+    }
+
+    /// Renders a new frame if anything it depends on changed (always, in the scripted mode).
+    fn draw_view(&mut self, ctx: &egui::Context, size: [u32; 2], frame_dt: std::time::Duration) {
+        if size[0] == 0 || size[1] == 0 {
+            return;
+        }
+        let key = FrameKey { revision: self.editor.revision(), time: self.clock.time, size };
+        if !self.view.is_stale(&key) && self.options.exit_after_frames.is_none() {
+            return;
+        }
+        let threads = self.editor.scene().render.threads;
+        match self.view.render(ctx, self.editor.world_mut(), key, threads) {
+            Ok(t) => {
+                self.stats.record(frame_dt, t.simulate, t.render, t.upload);
+                self.rendered += 1;
+            }
+            Err(e) => {
+                // A stateful model went unstable: stop the clock so the error stays readable.
+                self.clock.playing = false;
+                self.run_error = Some(e.to_string());
+            }
+        }
+    }
+}
+
+impl eframe::App for ViewerApp {
+    fn update(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
+        let now = Instant::now();
+        let frame_dt = self.last_frame.map(|t| now - t).unwrap_or_default();
+        self.last_frame = Some(now);
+        self.handle_screenshots(ctx);
+        self.handle_keys(ctx);
+        self.clock.tick(frame_dt.as_secs_f64());
+
+        egui::TopBottomPanel::bottom("status").exact_height(STATUS_HEIGHT).show(ctx, |ui| {
+            ui.horizontal_centered(|ui| {
+                ui.monospace(self.status_line());
+                if let Some(e) = &self.run_error {
+                    ui.colored_label(ui.visuals().error_fg_color, e);
+                }
+            });
+        });
+        egui::SidePanel::right("panel").exact_width(PANEL_WIDTH).show(ctx, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                let error = self.editor.error().map(str::to_owned);
+                let out =
+                    panels::show_all(ui, &mut self.editor.draft, &mut self.panels, &mut self.clock, error.as_deref());
+                self.handle_panel(ctx, out);
+            });
+        });
+        egui::CentralPanel::default().frame(egui::Frame::none().fill(Color32::BLACK)).show(ctx, |ui| {
+            let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
+            self.handle_mouse(ui, &response);
+            let ppp = ctx.pixels_per_point();
+            let size = [(rect.width() * ppp).round() as u32, (rect.height() * ppp).round() as u32];
+            self.draw_view(ctx, size, frame_dt);
+            if let Some(tex) = self.view.texture() {
+                let uv = Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+                ui.painter().image(tex.id(), rect, uv, Color32::WHITE);
+            }
+        });
+
+        self.scripted_exit(ctx);
+        if self.clock.playing || self.exit != ExitState::Running || self.options.exit_after_frames.is_some() {
+            ctx.request_repaint();
+        }
+    }
+}

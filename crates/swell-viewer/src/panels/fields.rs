@@ -1,0 +1,85 @@
+//! Field editors every panel uses: one labelled number, vector or colour per grid row.
+//!
+//! They never clamp: a value outside its range is kept in the draft and refused by validation,
+//! with the reason shown at the top of the panel (see [`crate::editor::SceneEditor::apply`]).
+
+use eframe::egui::{self, DragValue, Ui};
+use glam::{Vec2, Vec3};
+
+/// A labelled number with a unit suffix (`" m"`, `" m/s"`, `""`); returns whether it changed.
+pub fn number(ui: &mut Ui, label: &str, value: &mut f32, speed: f64, suffix: &str) -> bool {
+    ui.label(label);
+    let changed = ui.add(DragValue::new(value).speed(speed).suffix(suffix).max_decimals(4)).changed();
+    ui.end_row();
+    changed
+}
+
+/// A labelled whole number.
+pub fn count(ui: &mut Ui, label: &str, value: &mut u32, speed: f64) -> bool {
+    ui.label(label);
+    let changed = ui.add(DragValue::new(value).speed(speed)).changed();
+    ui.end_row();
+    changed
+}
+
+/// Three drag values for a 3-vector, without a label or row end (for use inside tables).
+pub fn vec3_inline(ui: &mut Ui, v: &mut Vec3, speed: f64) -> bool {
+    let mut changed = false;
+    for (c, name) in [(&mut v.x, "x "), (&mut v.y, "y "), (&mut v.z, "z ")] {
+        changed |= ui.add(DragValue::new(c).speed(speed).prefix(name).max_decimals(4)).changed();
+    }
+    changed
+}
+
+/// A labelled 3-vector (x, y, z).
+pub fn vec3(ui: &mut Ui, label: &str, v: &mut Vec3, speed: f64) -> bool {
+    ui.label(label);
+    let changed = ui.horizontal(|ui| vec3_inline(ui, v, speed)).inner;
+    ui.end_row();
+    changed
+}
+
+/// A labelled horizontal 2-vector, shown as (x, z) as scene files mean it.
+pub fn vec2_xz(ui: &mut Ui, label: &str, v: &mut Vec2, speed: f64) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let a = ui.add(DragValue::new(&mut v.x).speed(speed).prefix("x ").max_decimals(4)).changed();
+            let b = ui.add(DragValue::new(&mut v.y).speed(speed).prefix("z ").max_decimals(4)).changed();
+            a | b
+        })
+        .inner;
+    ui.end_row();
+    changed
+}
+
+/// A labelled linear-RGB colour: a swatch with egui's (linear) picker and the three components,
+/// which may exceed 1 where the scene allows it (light colours).
+pub fn color(ui: &mut Ui, label: &str, c: &mut Vec3) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let mut rgb = c.to_array();
+            let mut changed = false;
+            // The picker works in [0, 1]; only offer it when the colour is inside that range, so
+            // showing it can never rewrite a brighter colour.
+            if rgb.iter().all(|v| (0.0..=1.0).contains(v))
+                && egui::color_picker::color_edit_button_rgb(ui, &mut rgb).changed()
+            {
+                *c = Vec3::from_array(rgb);
+                changed = true;
+            }
+            for (v, name) in [(&mut c.x, "r "), (&mut c.y, "g "), (&mut c.z, "b ")] {
+                changed |= ui.add(DragValue::new(v).speed(0.005).prefix(name).max_decimals(3)).changed();
+            }
+            changed
+        })
+        .inner;
+    ui.end_row();
+    changed
+}
+
+/// A two-column grid for `label | editor` rows, with a unique id.
+pub fn grid(id: &str) -> egui::Grid {
+    egui::Grid::new(id).num_columns(2).spacing([8.0, 4.0])
+}

@@ -1,0 +1,156 @@
+//! The parameter panel: one module per scene section or water model, each a `show` function that
+//! edits part of the draft scene and says whether it changed.
+//!
+//! The pattern every panel follows (see the crate documentation for how to add one):
+//!
+//! ```text
+//! pub fn show(ui: &mut Ui, section: &mut Section [, form: &mut SectionForm]) -> bool
+//! ```
+//!
+//! - `section` is the part of [`SceneEditor::draft`](crate::editor::SceneEditor::draft) it edits;
+//!   widgets write into it directly and never clamp, so a bad value stays visible;
+//! - `form` (optional) is what the panel remembers between frames that is not part of the scene
+//!   (a "new wave" being typed, the reason an add was refused); it lives in [`PanelState`];
+//! - the return value says whether the section changed; [`show_all`] then asks the editor to
+//!   validate and commit the draft, and the reason for a refusal is shown at the top.
+//!
+//! Pure edit operations (adding a wave, switching a model) are plain functions beside the panel,
+//! unit-tested without a window.
+
+pub mod camera;
+pub mod fields;
+pub mod files;
+pub mod gerstner;
+pub mod lights;
+pub mod model_toml;
+pub mod render;
+pub mod sines;
+pub mod sky;
+pub mod time;
+pub mod water;
+
+use eframe::egui::{CollapsingHeader, Ui};
+use swell::scene::Scene;
+
+use crate::clock::Clock;
+
+/// Everything panels remember between frames that is not in the scene.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PanelState {
+    /// Gerstner's "new wave" form.
+    pub gerstner: gerstner::GerstnerForm,
+    /// Sum of sines' "new wave" form.
+    pub sines: sines::SinesForm,
+    /// The TOML editor of every other model.
+    pub model_toml: model_toml::ModelTomlForm,
+    /// Why the last model switch failed.
+    pub water_message: Option<String>,
+    /// File paths and the outcome of the last file operation.
+    pub files: files::FilesForm,
+}
+
+/// What the panel asks of the viewer this frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PanelOutput {
+    /// The draft scene changed: validate and commit it.
+    pub scene_changed: bool,
+    /// "Revert" was clicked: drop the refused draft.
+    pub revert: bool,
+    /// "Reset camera" was clicked.
+    pub reset_camera: bool,
+    /// A file operation was asked for.
+    pub file: Option<files::FileRequest>,
+}
+
+/// Shows every section, in the order a user works: files, time, water, lights, sky, render,
+/// camera. `error` is why the draft was last refused, shown at the top.
+pub fn show_all(
+    ui: &mut Ui,
+    draft: &mut Scene,
+    state: &mut PanelState,
+    clock: &mut Clock,
+    error: Option<&str>,
+) -> PanelOutput {
+    let mut out = PanelOutput::default();
+    if let Some(e) = error {
+        ui.horizontal_wrapped(|ui| {
+            ui.colored_label(ui.visuals().error_fg_color, format!("Refused: {e}"));
+            out.revert = ui.button("Revert").on_hover_text("Go back to the scene being shown").clicked();
+        });
+        ui.separator();
+    }
+    section(ui, "Files", true, |ui| out.file = files::show(ui, &mut state.files));
+    section(ui, "Time", true, |ui| time::show(ui, clock));
+    section(ui, "Water", true, |ui| out.scene_changed |= water::show(ui, &mut draft.water, state));
+    section(ui, "Lights", false, |ui| out.scene_changed |= lights::show(ui, &mut draft.lights));
+    section(ui, "Sky", false, |ui| out.scene_changed |= sky::show(ui, &mut draft.sky));
+    section(ui, "Render", true, |ui| {
+        out.scene_changed |= render::show(ui, &mut draft.render);
+    });
+    section(ui, "Camera", false, |ui| {
+        let (changed, request) = camera::show(ui, &mut draft.camera);
+        out.scene_changed |= changed;
+        out.reset_camera = request.reset;
+    });
+    out
+}
+
+fn section(ui: &mut Ui, title: &str, open: bool, body: impl FnOnce(&mut Ui)) {
+    CollapsingHeader::new(title).default_open(open).show(ui, body);
+}
+
+/// Runs [`show_all`] for one frame of a window-less egui context (no input), for tests.
+#[cfg(test)]
+pub(crate) fn show_headless(draft: &mut Scene, state: &mut PanelState, clock: &mut Clock) -> PanelOutput {
+    use eframe::egui;
+    let ctx = egui::Context::default();
+    let mut out = PanelOutput::default();
+    for _ in 0..2 {
+        // Two passes: egui lays some widgets out in a first, invisible pass.
+        let _ = ctx.run(egui::RawInput::default(), |ctx| {
+            egui::CentralPanel::default().show(ctx, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| out = show_all(ui, draft, state, clock, Some("test error")));
+            });
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::{preset, PRESETS};
+
+    use super::*;
+
+    #[test]
+    fn showing_the_panel_changes_nothing_in_any_preset() {
+        for p in PRESETS {
+            let scene = preset(p.name).unwrap();
+            let mut draft = scene.clone();
+            let mut state = PanelState::default();
+            let mut clock = Clock::default();
+            let out = show_headless(&mut draft, &mut state, &mut clock);
+            assert_eq!(draft, scene, "preset {}", p.name);
+            assert_eq!(out, PanelOutput::default());
+            assert_eq!(state, PanelState::default());
+            assert_eq!(clock, Clock::default());
+            // And what the panel shows saves to the same file.
+            assert_eq!(Scene::from_toml(&draft.to_toml(), "t").unwrap(), scene);
+        }
+    }
+
+    #[test]
+    fn the_panel_shows_scenes_without_water_and_with_every_model() {
+        let mut scene = preset("sea").unwrap();
+        scene.water = None;
+        let mut draft = scene.clone();
+        show_headless(&mut draft, &mut PanelState::default(), &mut Clock::default());
+        assert_eq!(draft, scene);
+        for &m in swell::scene::WATER_MODELS {
+            scene.water = Some(water::switch_model(None, m).unwrap());
+            let mut draft = scene.clone();
+            show_headless(&mut draft, &mut PanelState::default(), &mut Clock::default());
+            assert_eq!(draft, scene, "model {m}");
+        }
+    }
+}

@@ -1,0 +1,50 @@
+//! The render panel: exposure, display gamma, ambient light, worker threads, the overlays and the
+//! image size `swell render` uses for this scene.
+
+use eframe::egui::{DragValue, Ui};
+use swell::scene::RenderSettings;
+
+use super::fields;
+
+/// The display gamma offered when switching from the sRGB curve to a power law.
+pub const DEFAULT_POWER_GAMMA: f32 = 2.2;
+
+/// Shows the render settings; returns whether `render` changed.
+pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
+    let mut changed = false;
+    fields::grid("render").show(ui, |ui| {
+        changed |= fields::number(ui, "exposure", &mut render.exposure, 0.01, "");
+        ui.label("encoding");
+        ui.horizontal(|ui| {
+            let mut power = render.gamma.is_some();
+            if ui.checkbox(&mut power, "power-law gamma").changed() {
+                render.gamma = power.then_some(DEFAULT_POWER_GAMMA);
+                changed = true;
+            }
+            match &mut render.gamma {
+                Some(g) => changed |= ui.add(DragValue::new(g).speed(0.01).max_decimals(3)).changed(),
+                None => {
+                    ui.label("sRGB curve");
+                }
+            }
+        });
+        ui.end_row();
+        changed |= fields::color(ui, "ambient", &mut render.ambient);
+        changed |= fields::count(ui, "threads (0 = all cores)", &mut render.threads, 0.05);
+        ui.label("saved image size");
+        ui.horizontal(|ui| {
+            changed |= ui.add(DragValue::new(&mut render.width).speed(4.0).suffix(" px")).changed();
+            ui.label("x");
+            changed |= ui.add(DragValue::new(&mut render.height).speed(4.0).suffix(" px")).changed();
+        });
+        ui.end_row();
+        ui.label("overlays");
+        ui.horizontal(|ui| {
+            changed |= ui.checkbox(&mut render.wireframe, "wireframe (t)").changed();
+            changed |= ui.checkbox(&mut render.normals, "normals (n)").changed();
+        });
+        ui.end_row();
+    });
+    ui.small("The view renders at the window's size; the saved size is what `swell render` uses.");
+    changed
+}

@@ -1,0 +1,207 @@
+//! The water panel: which model (or none), the patch and its grid resolution, the material, and
+//! the active model's own panel.
+//!
+//! Adding a model's panel: write `panels/<model>.rs` with `show(ui, &mut <Model>Spec, &mut
+//! <Model>Form) -> bool`, add its form to [`super::PanelState`] and one arm to the `match` in
+//! [`show`]; the compiler points at the match when a new `WaterModelSpec` variant arrives.
+
+use eframe::egui::{self, Ui};
+use swell::scene::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
+use swell::shading::Shading;
+use swell::water::{GerstnerWave, SineWave};
+use swell::{Error, Result};
+
+use super::{fields, gerstner, model_toml, sines, PanelState};
+
+/// Shading models the panel offers, in menu order.
+pub const SHADINGS: &[Shading] = &[Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::BlinnPhong];
+
+/// The `water.model` name of a model spec, as written in scene files.
+pub fn model_name(model: &WaterModelSpec) -> String {
+    // The serde tag is the one source of truth for names, so this needs no per-model arm.
+    match toml::Table::try_from(model).ok().and_then(|t| t.get("model").cloned()) {
+        Some(toml::Value::String(s)) => s,
+        _ => "?".into(),
+    }
+}
+
+/// A scene-file name for a shading model (`"gouraud"`).
+pub fn shading_name(s: Shading) -> String {
+    match toml::Value::try_from(s) {
+        Ok(toml::Value::String(name)) => name,
+        _ => format!("{s:?}"),
+    }
+}
+
+/// The water with its model switched to `name` (one of [`WATER_MODELS`]), keeping the patch and
+/// material. Between Gerstner and sines the wave list carries over (a sine wave is a Gerstner wave
+/// of steepness 0, so that direction changes nothing on screen); any other model starts from its
+/// defaults.
+pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> {
+    let (surface, material) = match water {
+        Some(w) => (w.surface, w.material.clone()),
+        None => (WaterSurface::default(), WaterMaterial::default()),
+    };
+    if let Some(w) = water {
+        if model_name(&w.model) == name {
+            return Ok(w.clone());
+        }
+        match (&w.model, name) {
+            (WaterModelSpec::Gerstner(g), "sines") => {
+                let waves = g
+                    .waves
+                    .iter()
+                    .map(|w| SineWave {
+                        amplitude: w.amplitude,
+                        wavelength: w.wavelength,
+                        speed: w.speed,
+                        direction: w.direction,
+                    })
+                    .collect();
+                return Ok(WaterSpec { surface, material, model: WaterModelSpec::Sines(SinesSpec { waves }) });
+            }
+            (WaterModelSpec::Sines(s), "gerstner") => {
+                let waves = s
+                    .waves
+                    .iter()
+                    .map(|w| GerstnerWave {
+                        amplitude: w.amplitude,
+                        wavelength: w.wavelength,
+                        speed: w.speed,
+                        direction: w.direction,
+                        steepness: 0.0,
+                    })
+                    .collect();
+                return Ok(WaterSpec { surface, material, model: WaterModelSpec::Gerstner(GerstnerSpec { waves }) });
+            }
+            _ => {}
+        }
+    }
+    if !WATER_MODELS.contains(&name) {
+        return Err(Error::invalid(
+            "water.model",
+            format!("\"{name}\" is not a model; valid: {}", WATER_MODELS.join(", ")),
+        ));
+    }
+    // Any other model: its defaults, read through the scene-file parser like a `[water]` table
+    // that names only the model, the patch and the material.
+    let base = WaterSpec { surface, material, model: WaterModelSpec::Gerstner(Default::default()) };
+    let mut table = toml::Table::new();
+    for (k, v) in base.to_table() {
+        if matches!(k.as_str(), "size" | "cells" | "center" | "material") {
+            table.insert(k, v);
+        }
+    }
+    table.insert("model".into(), toml::Value::String(name.into()));
+    WaterSpec::from_table(table, "viewer")
+}
+
+/// Shows the water section; returns whether `water` changed.
+pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) -> bool {
+    let mut changed = false;
+    let current = water.as_ref().map(|w| model_name(&w.model));
+    let mut chosen = current.clone();
+    fields::grid("water-model").show(ui, |ui| {
+        ui.label("model");
+        egui::ComboBox::from_id_salt("water-model-combo").selected_text(current.as_deref().unwrap_or("none")).show_ui(
+            ui,
+            |ui| {
+                ui.selectable_value(&mut chosen, None, "none");
+                for &m in WATER_MODELS {
+                    ui.selectable_value(&mut chosen, Some(m.to_string()), m);
+                }
+            },
+        );
+        ui.end_row();
+    });
+    if chosen != current {
+        match chosen {
+            None => {
+                *water = None;
+                changed = true;
+            }
+            Some(name) => match switch_model(water.as_ref(), &name) {
+                Ok(w) => {
+                    *water = Some(w);
+                    changed = true;
+                }
+                Err(e) => forms.water_message = Some(e.to_string()),
+            },
+        }
+    }
+    if let Some(m) = &forms.water_message {
+        ui.colored_label(ui.visuals().error_fg_color, m);
+    }
+    let Some(w) = water else { return changed };
+
+    fields::grid("water-surface").show(ui, |ui| {
+        changed |= fields::vec2_xz(ui, "size (m)", &mut w.surface.size, 1.0);
+        ui.label("grid cells");
+        ui.horizontal(|ui| {
+            let [cx, cz] = &mut w.surface.cells;
+            for (c, name) in [(cx, "x "), (cz, "z ")] {
+                changed |= ui.add(egui::DragValue::new(c).speed(2.0).prefix(name)).changed();
+            }
+        });
+        ui.end_row();
+        changed |= fields::vec2_xz(ui, "center (m)", &mut w.surface.center, 1.0);
+        changed |= fields::color(ui, "colour", &mut w.material.color);
+        changed |= fields::number(ui, "refractive index", &mut w.material.refractive_index, 0.001, "");
+        ui.label("shading");
+        egui::ComboBox::from_id_salt("water-shading").selected_text(shading_name(w.material.shading)).show_ui(
+            ui,
+            |ui| {
+                for &s in SHADINGS {
+                    changed |= ui.selectable_value(&mut w.material.shading, s, shading_name(s)).changed();
+                }
+            },
+        );
+        ui.end_row();
+    });
+    ui.separator();
+    changed |= match &mut w.model {
+        WaterModelSpec::Gerstner(spec) => gerstner::show(ui, spec, &mut forms.gerstner),
+        WaterModelSpec::Sines(spec) => sines::show(ui, spec, &mut forms.sines),
+        other => model_toml::show(ui, other, &mut forms.model_toml),
+    };
+    changed
+}
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::preset;
+
+    use super::*;
+
+    #[test]
+    fn names_come_from_the_scene_format() {
+        let sea = preset("sea").unwrap().water.unwrap();
+        assert_eq!(model_name(&sea.model), "gerstner");
+        assert_eq!(shading_name(Shading::Gouraud), "gouraud");
+        for &s in SHADINGS {
+            let text = format!("model = 'sines'\n[material]\nshading = '{}'\n", shading_name(s));
+            let w = WaterSpec::from_table(toml::from_str(&text).unwrap(), "t").unwrap();
+            assert_eq!(w.material.shading, s);
+        }
+    }
+
+    #[test]
+    fn switching_models_keeps_the_patch_and_carries_the_waves() {
+        let sea = preset("sea").unwrap().water.unwrap();
+        let sines = switch_model(Some(&sea), "sines").unwrap();
+        assert_eq!((sines.surface, sines.material), (sea.surface, sea.material));
+        let WaterModelSpec::Sines(s) = &sines.model else { panic!("{sines:?}") };
+        assert_eq!(s.waves.len(), 10);
+        let back = switch_model(Some(&sines), "gerstner").unwrap();
+        let WaterModelSpec::Gerstner(g) = &back.model else { panic!("{back:?}") };
+        assert!(g.waves.iter().all(|w| w.steepness == 0.0));
+        // Every model listed can be chosen from nothing and builds.
+        for &m in WATER_MODELS {
+            let w = switch_model(None, m).unwrap();
+            assert_eq!(model_name(&w.model), m);
+            w.model.build().unwrap();
+        }
+        assert!(switch_model(Some(&sea), "lava").is_err());
+        assert_eq!(switch_model(Some(&sea), "gerstner").unwrap(), sea);
+    }
+}
