@@ -57,6 +57,7 @@ pub mod raster;
 pub mod render;
 pub mod scene;
 pub mod shading;
+pub mod spectrum;
 pub mod water;
 
 pub use error::{Error, Result};
