@@ -150,6 +150,10 @@ mod tests {
         }
         assert_eq!(Spreading::Cos2.density(2.0, 1.0, 1.0, 10.0), 0.0);
         assert_eq!(wrap_angle(-PI), PI);
-        assert!((Spreading::Cos2.density(0.3 + 4.0 * PI, 1.0, 1.0, 10.0) - Spreading::Cos2.density(0.3, 1.0, 1.0, 10.0)).abs() < 1e-12);
+        assert!(
+            (Spreading::Cos2.density(0.3 + 4.0 * PI, 1.0, 1.0, 10.0) - Spreading::Cos2.density(0.3, 1.0, 1.0, 10.0))
+                .abs()
+                < 1e-12
+        );
     }
 }
