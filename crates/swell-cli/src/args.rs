@@ -20,6 +20,52 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes, one per line.
     Presets,
+    /// Print the sea state realised by a spectral (`model = "fft"`) scene, as JSON.
+    Stats(StatsArgs),
+    /// Time an experiment (see `swell bench --help`).
+    Bench(BenchArgs),
+}
+
+/// `swell stats`.
+#[derive(Args, Debug)]
+pub struct StatsArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Simulation time, in seconds.
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true)]
+    pub time: f64,
+}
+
+/// `swell bench EXPERIMENT`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// The experiment to run.
+    #[command(subcommand)]
+    pub experiment: BenchExperiment,
+}
+
+/// The experiments `swell bench` can time.
+#[derive(Subcommand, Debug)]
+pub enum BenchExperiment {
+    /// The FFT ocean's full step (spectrum evolution, 8 fields, foam) and the displaced mesh.
+    Ocean(OceanBenchArgs),
+}
+
+/// `swell bench ocean`.
+#[derive(Args, Debug)]
+pub struct OceanBenchArgs {
+    /// FFT grid side N, a power of two in [16, 2048].
+    #[arg(long, value_name = "N", default_value_t = 256)]
+    pub grid: u32,
+    /// Timed steps after the warm-up, 1 to 100000 (default: about one second's worth, at least 10).
+    #[arg(long, value_name = "N")]
+    pub steps: Option<u32>,
+    /// Worker threads, 0 = one per core.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: u32,
+    /// Print JSON: {"grid": N, "median_ms": ..., "stages": {...}}.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.

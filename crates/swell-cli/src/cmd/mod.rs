@@ -1,7 +1,9 @@
 //! One file per subcommand, plus what they share: loading a scene and building a thread pool.
 
+mod bench;
 mod presets;
 mod render;
+mod stats;
 
 use swell::scene::{preset, Scene, MAX_THREADS};
 use swell::{Error, Result};
@@ -13,6 +15,8 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(a) => render::run(a),
         Command::Presets => presets::run(),
+        Command::Stats(a) => stats::run(a),
+        Command::Bench(a) => bench::run(a),
     }
 }
 

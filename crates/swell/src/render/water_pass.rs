@@ -31,6 +31,17 @@ pub fn draw(
             };
         },
     );
+    // Foam (FFT ocean): blend towards a diffuse white surface by coverage. A minimal placeholder
+    // until foam gets its own shading; 0.8 is the albedo of whitecap foam (Koepke 1984).
+    if mesh.has_foam && material.shading == Shading::Gouraud {
+        let (foam, positions, normals) = (&mesh.foam, &mesh.positions, &mesh.normals);
+        clip_vertices.par_iter_mut().enumerate().for_each(|(i, cv)| {
+            let f = foam[i].clamp(0.0, 1.0);
+            if f > 0.0 {
+                cv.varying = cv.varying.lerp(0.8 * crate::shading::lambert(env, positions[i], normals[i]), f);
+            }
+        });
+    }
     match material.shading {
         Shading::Gouraud => raster_draw(fb, clip_vertices, &mesh.indices, Cull::None, &|f| f.varying),
         Shading::Flat => {

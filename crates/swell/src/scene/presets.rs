@@ -15,11 +15,18 @@ pub struct Preset {
 }
 
 /// Every preset, in the order `swell presets` lists them.
-pub const PRESETS: &[Preset] = &[Preset {
-    name: "sea",
-    description: "open sea: 10 Gerstner waves from a westerly wind under a clear sky",
-    toml: include_str!("../../presets/sea.toml"),
-}];
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "sea",
+        description: "open sea: 10 Gerstner waves from a westerly wind under a clear sky",
+        toml: include_str!("../../presets/sea.toml"),
+    },
+    Preset {
+        name: "ocean",
+        description: "spectral (FFT) ocean: a JONSWAP wind sea of 12 m/s with choppy crests and foam",
+        toml: include_str!("../../presets/ocean.toml"),
+    },
+];
 
 /// The scene of preset `name`, parsed and validated.
 pub fn preset(name: &str) -> Result<Scene> {

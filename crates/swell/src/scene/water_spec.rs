@@ -22,7 +22,7 @@ use serde::{de::DeserializeOwned, Deserialize, Serialize};
 use crate::error::{check_finite_vec, check_range, Error, Result};
 use crate::math::GridSpec;
 use crate::shading::Shading;
-use crate::water::{Gerstner, GerstnerWave, SineWave, SumOfSines, WaveModel};
+use crate::water::{FftOcean, FftOceanParams, Gerstner, GerstnerWave, SineWave, SumOfSines, WaveModel};
 
 /// The water patch and its sampling grid.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -110,10 +110,12 @@ pub enum WaterModelSpec {
     Gerstner(GerstnerSpec),
     /// `model = "sines"`.
     Sines(SinesSpec),
+    /// `model = "fft"`: the spectral (Tessendorf) ocean; its keys sit in `[water]`.
+    Fft(FftOceanParams),
 }
 
 /// The names `water.model` accepts.
-pub const WATER_MODELS: &[&str] = &["gerstner", "sines"];
+pub const WATER_MODELS: &[&str] = &["gerstner", "sines", "fft"];
 
 impl WaterModelSpec {
     /// Builds the model, validating its parameters.
@@ -121,6 +123,7 @@ impl WaterModelSpec {
         Ok(match self {
             WaterModelSpec::Gerstner(s) => Box::new(Gerstner::new(s.waves.clone())?),
             WaterModelSpec::Sines(s) => Box::new(SumOfSines::new(s.waves.clone())?),
+            WaterModelSpec::Fft(p) => Box::new(FftOcean::new(p)?),
         })
     }
 
@@ -128,6 +131,7 @@ impl WaterModelSpec {
         Ok(match model {
             "gerstner" => WaterModelSpec::Gerstner(deserialize_at(rest, "water", source)?),
             "sines" => WaterModelSpec::Sines(deserialize_at(rest, "water", source)?),
+            "fft" => WaterModelSpec::Fft(deserialize_at(rest, "water", source)?),
             other => {
                 return Err(Error::Parse {
                     path: source.to_string(),
@@ -246,6 +250,19 @@ mod tests {
     }
 
     #[test]
+    fn an_fft_section_round_trips_through_toml() {
+        let w = parse(
+            "model = 'fft'\ngrid = 64\nspectrum = 'tma'\ndepth = 12.0\nspreading = 'donelan-banner'\n\
+             loop_period = 30.0\n[swell]\nheight = 0.8\n",
+        )
+        .unwrap();
+        let WaterModelSpec::Fft(p) = &w.model else { panic!("not fft: {:?}", w.model) };
+        assert_eq!((p.grid, p.depth, p.swell.unwrap().height), (64, Some(12.0), 0.8));
+        assert_eq!(WaterSpec::from_table(w.to_table(), "again").unwrap(), w);
+        w.model.build().unwrap();
+    }
+
+    #[test]
     fn errors_name_the_full_key_path() {
         let e = parse("model = 'gerstner'\n[[waves]]\namplitude = 1.0\nwavelength = 'x'\n").unwrap_err();
         assert!(e.to_string().contains("water.waves[0].wavelength"), "{e}");
@@ -253,6 +270,10 @@ mod tests {
         assert!(e.to_string().contains("bogus"), "{e}");
         let e = parse("model = 'tsunami'\n").unwrap_err();
         assert!(e.to_string().contains("gerstner, sines"), "{e}");
+        let e = parse("model = 'fft'\ngrid = 100\n").unwrap().model.build().err().unwrap();
+        assert_eq!(e.to_string(), "water.grid = 100 is outside powers of two in [16, 2048]");
+        let e = parse("model = 'fft'\nspectrum = 'bretschneider'\n").unwrap_err();
+        assert!(e.to_string().contains("water.spectrum"), "{e}");
         let e = parse("model = 'sines'\ncells = [0, 4]\n").unwrap();
         assert_eq!(e.validate().unwrap_err().to_string(), "water.cells[0] = 0 is outside [1, 4096]");
     }

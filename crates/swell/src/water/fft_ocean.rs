@@ -197,6 +197,32 @@ impl FftOcean {
         acc
     }
 
+    /// If `grid` samples exactly the single cascade's grid points (same spacing, origin on a grid
+    /// point), the field index of its vertex (0, 0): evaluation then reads samples directly, which
+    /// is exact and about three times faster than bilinear sampling.
+    fn aligned_index(&self, grid: &GridSpec) -> Option<(i64, i64)> {
+        let [c] = self.cascades.as_slice() else { return None };
+        let dx = c.patch / c.n as f32;
+        let s = grid.spacing();
+        let (u, v) = (grid.origin.x / dx, grid.origin.y / dx);
+        let close = |a: f32, b: f32| (a - b).abs() <= 1e-6 * b.abs().max(1.0);
+        (close(s.x, dx) && close(s.y, dx) && close(u, u.round()) && close(v, v.round()))
+            .then(|| (u.round() as i64, v.round() as i64))
+    }
+
+    /// The eight fields of the single cascade at sample (i, j), wrapped periodically.
+    fn fields_at_sample(&self, i: i64, j: i64) -> Fields {
+        let c = &self.cascades[0];
+        let mask = c.n as i64 - 1;
+        let idx = (j & mask) as usize * c.n + (i & mask) as usize;
+        let mut out = [0.0; 8];
+        for (p, field) in c.fields.iter().enumerate() {
+            out[2 * p] = field[idx].re;
+            out[2 * p + 1] = field[idx].im;
+        }
+        out
+    }
+
     /// Displacement (Dx, h, Dz) in metres of the water that rests at (x, z), at the time of the last
     /// [`WaveModel::advance`]: the displaced point is `(x + Dx, h, z + Dz)`.
     pub fn displacement_at(&self, x: f32, z: f32) -> Vec3 {
@@ -336,10 +362,14 @@ impl WaveModel for FftOcean {
         assert!(positions.len() == n && normals.len() == n, "buffers must hold grid.vertex_count() = {n} vertices");
         let _ = t;
         let row = grid.verts_x();
+        let aligned = self.aligned_index(grid);
         positions.par_chunks_mut(row).zip(normals.par_chunks_mut(row)).enumerate().for_each(|(j, (prow, nrow))| {
             for (i, (p, nrm)) in prow.iter_mut().zip(nrow.iter_mut()).enumerate() {
                 let rest = grid.rest_position(i, j);
-                let f = self.fields_at(rest.x, rest.y);
+                let f = match aligned {
+                    Some((i0, j0)) => self.fields_at_sample(i0 + i as i64, j0 + j as i64),
+                    None => self.fields_at(rest.x, rest.y),
+                };
                 *p = Vec3::new(rest.x + f[1], f[0], rest.y + f[2]);
                 *nrm = normal_of(&f);
             }

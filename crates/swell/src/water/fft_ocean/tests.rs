@@ -313,3 +313,22 @@ fn cascades_split_the_band_without_counting_a_wave_twice() {
     let three = o.sea_state().hs_expected;
     assert!((three / single - 1.0).abs() < 0.03, "{three} vs {single}");
 }
+
+#[test]
+fn an_aligned_mesh_reads_the_samples_the_bilinear_path_would_interpolate() {
+    let mut o = ocean(&params(32, 64.0));
+    o.advance(1.0).unwrap();
+    // Spacing 2 m = the field's; origin on sample (-3, 5).
+    let grid = GridSpec::new(Vec2::new(-6.0, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
+    assert_eq!(o.aligned_index(&grid), Some((-3, 5)));
+    let mut pos = vec![Vec3::ZERO; grid.vertex_count()];
+    let mut nrm = pos.clone();
+    o.evaluate(&grid, 1.0, &mut pos, &mut nrm);
+    for (idx, p) in pos.iter().enumerate().step_by(13) {
+        let r = grid.rest_position(idx % 41, idx / 41);
+        let f = o.fields_at(r.x, r.y);
+        assert!((p.y - f[0]).abs() < 1e-5 && (p.x - r.x - f[1]).abs() < 1e-5, "{p} vs {f:?}");
+    }
+    let off = GridSpec::new(Vec2::new(-6.3, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
+    assert_eq!(o.aligned_index(&off), None);
+}
