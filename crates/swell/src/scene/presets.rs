@@ -23,7 +23,7 @@ pub const PRESETS: &[Preset] = &[
     },
     Preset {
         name: "ocean",
-        description: "spectral (FFT) ocean: a JONSWAP wind sea of 12 m/s with choppy crests and foam",
+        description: "spectral (FFT) ocean: a JONSWAP wind sea of 14 m/s with choppy crests and foam",
         toml: include_str!("../../presets/ocean.toml"),
     },
 ];
