@@ -42,7 +42,11 @@ fn stats_reads_scene_files_and_refuses_models_without_a_spectrum() {
     let bad = fft.replace("grid = 32", "grid = 48");
     std::fs::write(dir.path().join("bad.toml"), bad).unwrap();
     let out = swell(dir.path(), &["stats", "--scene", "bad.toml"]);
-    assert!(String::from_utf8_lossy(&out.stderr).contains("water.grid = 48"), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("water.grid = 48"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -62,7 +66,8 @@ fn bench_ocean_prints_the_median_and_stages_as_json() {
 #[test]
 fn the_ocean_preset_renders() {
     let dir = tempfile::tempdir().unwrap();
-    let out = swell(dir.path(), &["render", "--preset", "ocean", "--size", "160x90", "--time", "1.0", "--out", "o.png"]);
+    let out =
+        swell(dir.path(), &["render", "--preset", "ocean", "--size", "160x90", "--time", "1.0", "--out", "o.png"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let img = image::open(dir.path().join("o.png")).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (160, 90));

@@ -6,6 +6,9 @@ use std::f32::consts::TAU;
 /// with plain additions (which vectorise, unlike a call to `round`).
 const ROUND_MAGIC: f64 = 6_755_399_441_055_744.0;
 
+/// The f32 counterpart, 1.5 * 2^23: rounds values of magnitude below 2^22.
+const ROUND_MAGIC_F32: f32 = 12_582_912.0;
+
 /// The fractional part of `turns` in [-0.5, 0.5] (nearest-integer reduction), as f32.
 ///
 /// Exact for |turns| < 2^51; phases are kept in f64 turns up to here so that a sea stays exact for
@@ -23,7 +26,8 @@ pub fn reduce_turns(turns: f64) -> f32 {
 /// (π/4)^10/10!), then rotates by q quarter turns. Branch-free so that loops over waves vectorise.
 #[inline(always)]
 pub fn sin_cos_turns(c: f32) -> (f32, f32) {
-    let q = (4.0 * c).round();
+    // |4c| <= 2, far inside the magic constant's range; the result is the nearest quarter turn.
+    let q = (4.0 * c + ROUND_MAGIC_F32) - ROUND_MAGIC_F32;
     let x = TAU * (c - 0.25 * q);
     let x2 = x * x;
     let s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0)));
@@ -33,6 +37,18 @@ pub fn sin_cos_turns(c: f32) -> (f32, f32) {
     let sin = if qi >= 2 { -s1 } else { s1 };
     let cos = if qi == 1 || qi == 2 { -c1 } else { c1 };
     (sin, cos)
+}
+
+/// `x.floor()` for |x| < 2^31 without a call into libm (the x86-64 baseline has no floor
+/// instruction): truncate, then step down for negative non-integers.
+#[inline(always)]
+pub fn fast_floor(x: f32) -> f32 {
+    let t = x as i32 as f32;
+    if t > x {
+        t - 1.0
+    } else {
+        t
+    }
 }
 
 #[cfg(test)]
@@ -46,6 +62,13 @@ mod tests {
             let (s, co) = sin_cos_turns(c);
             let (es, ec) = (f64::from(c) * std::f64::consts::TAU).sin_cos();
             assert!((f64::from(s) - es).abs() < 6e-7 && (f64::from(co) - ec).abs() < 6e-7, "{c}: {s} {co}");
+        }
+    }
+
+    #[test]
+    fn fast_floor_is_floor() {
+        for x in [-3.5f32, -3.0, -0.25, 0.0, 0.25, 2.0, 2.999, 1e6 + 0.5] {
+            assert_eq!(fast_floor(x), x.floor(), "{x}");
         }
     }
 

@@ -7,6 +7,6 @@ mod grid_spec;
 mod perlin;
 
 pub use color::{linear_to_srgb, srgb_to_linear};
-pub use fast_trig::{reduce_turns, sin_cos_turns};
+pub use fast_trig::{fast_floor, reduce_turns, sin_cos_turns};
 pub use grid_spec::{GridSpec, MAX_GRID_CELLS};
 pub use perlin::Perlin;

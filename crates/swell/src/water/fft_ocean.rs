@@ -32,7 +32,7 @@ pub use self::params::{FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE
 use super::foam::FoamField;
 use super::wave_model::{WaveModel, INVERSION_MAX_ITERATIONS, INVERSION_TOLERANCE};
 use crate::error::Result;
-use crate::math::GridSpec;
+use crate::math::{fast_floor, GridSpec};
 use crate::spectrum::DirectionalSpectrum;
 
 /// Ratio of the sides of successive cascades: sqrt(19) ≈ 4.36, irrational so the tiles of different
@@ -324,7 +324,7 @@ fn sample(c: &Cascade, x: f32, z: f32) -> Fields {
     let n = c.n;
     let inv_dx = n as f32 / c.patch;
     let (u, v) = (x * inv_dx, z * inv_dx);
-    let (fu, fv) = (u.floor(), v.floor());
+    let (fu, fv) = (fast_floor(u), fast_floor(v));
     let (tx, tz) = (u - fu, v - fv);
     let mask = n as i64 - 1;
     let i0 = (fu as i64 & mask) as usize;
@@ -424,10 +424,18 @@ impl WaveModel for FftOcean {
         let inv_dx = n as f32 / first.patch;
         let values = &self.foam.values;
         let mask = n as i64 - 1;
+        let aligned = self.aligned_index(grid);
         out.par_chunks_mut(grid.verts_x()).enumerate().for_each(|(j, row)| {
+            if let Some((i0, j0)) = aligned {
+                let jj = ((j0 + j as i64) & mask) as usize * n;
+                for (i, o) in row.iter_mut().enumerate() {
+                    *o = values[jj + ((i0 + i as i64) & mask) as usize];
+                }
+                return;
+            }
             for (i, o) in row.iter_mut().enumerate() {
                 let r = grid.rest_position(i, j) * inv_dx;
-                let (fu, fv) = (r.x.floor(), r.y.floor());
+                let (fu, fv) = (fast_floor(r.x), fast_floor(r.y));
                 let (tx, tz) = (r.x - fu, r.y - fv);
                 let (i0, j0) = ((fu as i64 & mask) as usize, (fv as i64 & mask) as usize);
                 let (i1, j1) = ((i0 + 1) & mask as usize, (j0 + 1) & mask as usize);

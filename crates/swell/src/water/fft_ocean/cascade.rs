@@ -41,6 +41,11 @@ use crate::spectrum::DirectionalSpectrum;
 /// Rows handled by one parallel task; each task owns one FFT scratch buffer.
 const ROWS_PER_TASK: usize = 16;
 
+/// Padding (complex values) after each row of the column-pass buffer. Its row length is otherwise
+/// a power of two, so the transpose's reads down a column would all fall in the same cache set;
+/// 16 values (128 bytes) move successive rows to different sets and keep rows aligned.
+const WORK_ROW_PADDING: usize = 16;
+
 /// Index of each packed field pair in [`Cascade::fields`]: (real part, imaginary part).
 pub(super) const PAIR_H_DX: usize = 0;
 /// (Dz, hx).
@@ -66,7 +71,7 @@ pub(super) struct Cascade {
     cycles: Vec<f64>,
     /// `h(k, t)` of the last step; same layout.
     ht: Vec<Complex32>,
-    /// Column pass output, `[kx index][z]`.
+    /// Column pass output, `[kx index][z]`, rows `n + WORK_ROW_PADDING` long.
     work: Vec<Complex32>,
     /// The four packed field pairs, `[z][x]`: sample (i, j) sits at local (i L/N, j L/N).
     pub fields: [Vec<Complex32>; 4],
@@ -192,7 +197,7 @@ impl Cascade {
             h0_mirror,
             cycles,
             ht: vec![Complex32::default(); half * n],
-            work: zero(),
+            work: vec![Complex32::default(); n * (n + WORK_ROW_PADDING)],
             fields: [zero(), zero(), zero(), zero()],
             wavenumbers: (0..n).map(|i| signed_index(i, n) as f32 * dk as f32).collect(),
             choppiness: s.choppiness,
@@ -232,27 +237,45 @@ impl Cascade {
 
     /// Fills `[kx][kz]` rows with the spectrum of one field pair and transforms each over kz.
     fn column_pass(&mut self, pair: usize) {
+        match pair {
+            PAIR_H_DX => self.column_pass_for::<PAIR_H_DX>(),
+            PAIR_DZ_HX => self.column_pass_for::<PAIR_DZ_HX>(),
+            PAIR_HZ_DXX => self.column_pass_for::<PAIR_HZ_DXX>(),
+            _ => self.column_pass_for::<PAIR_DZZ_DXZ>(),
+        }
+    }
+
+    /// [`Cascade::column_pass`] with the pair known at compile time, so the inner loop is
+    /// branch-free and vectorises.
+    fn column_pass_for<const PAIR: usize>(&mut self) {
         let n = self.n;
         let half = n / 2;
+        let stride = n + WORK_ROW_PADDING;
         let rows = ROWS_PER_TASK.min(n);
         let (ht, kk, lambda, fft) = (&self.ht, &self.wavenumbers, self.choppiness, &self.fft);
-        self.work.par_chunks_mut(rows * n).zip(self.scratch.par_iter_mut()).enumerate().for_each(
+        self.work.par_chunks_mut(rows * stride).zip(self.scratch.par_iter_mut()).enumerate().for_each(
             |(task, (block, scratch))| {
-                for (r, row) in block.chunks_exact_mut(n).enumerate() {
+                for (r, padded) in block.chunks_exact_mut(stride).enumerate() {
+                    let row = &mut padded[..n];
                     let a = task * rows + r;
                     let kx = kk[a];
-                    for (b, out) in row.iter_mut().enumerate() {
-                        let h = if a < half {
-                            ht[a * n + b]
-                        } else if a == half {
-                            Complex32::default()
-                        } else {
-                            ht[(n - a) * n + (n - b) % n].conj()
-                        };
-                        *out = h * pair_multiplier(pair, kx, kk[b], lambda);
+                    let m = |b: usize| pair_multiplier::<PAIR>(kx, kk[b], lambda);
+                    if a < half {
+                        for (b, (out, h)) in row.iter_mut().zip(&ht[a * n..(a + 1) * n]).enumerate() {
+                            *out = *h * m(b);
+                        }
+                    } else if a == half {
+                        row.fill(Complex32::default());
+                    } else {
+                        // Row -kx is the mirror of row kx: h(-k) = conj(h(k)), column -kz.
+                        let src = &ht[(n - a) * n..(n - a + 1) * n];
+                        row[0] = src[0].conj() * m(0);
+                        for (b, (out, h)) in row[1..].iter_mut().zip(src[1..].iter().rev()).enumerate() {
+                            *out = h.conj() * m(b + 1);
+                        }
                     }
+                    fft.process_with_scratch(row, scratch);
                 }
-                fft.process_with_scratch(block, scratch);
             },
         );
     }
@@ -260,15 +283,17 @@ impl Cascade {
     /// Transposes `[kx][z]` to `[z][kx]` block by block and transforms each row over kx.
     fn row_pass(&mut self, pair: usize) {
         let n = self.n;
+        let stride = n + WORK_ROW_PADDING;
         let rows = ROWS_PER_TASK.min(n);
         let (work, fft) = (&self.work, &self.fft);
         self.fields[pair].par_chunks_mut(rows * n).zip(self.scratch.par_iter_mut()).enumerate().for_each(
             |(task, (block, scratch))| {
                 let z0 = task * rows;
-                for a in 0..n {
-                    let src = &work[a * n + z0..a * n + z0 + rows];
-                    for (r, v) in src.iter().enumerate() {
-                        block[r * n + a] = *v;
+                // Writes run along each output row; the reads down a column of `work` touch
+                // rows * 8 bytes of each padded row, which stay in cache across the block.
+                for (r, row) in block.chunks_exact_mut(n).enumerate() {
+                    for (out, src) in row.iter_mut().zip(work.chunks_exact(stride)) {
+                        *out = src[z0 + r];
                     }
                 }
                 fft.process_with_scratch(block, scratch);
@@ -306,11 +331,11 @@ impl Cascade {
 /// With `A + iB` packing: (h, Dx): `1 + i (i λ kx/k)`; (Dz, hx): `i λ kz/k + i (i kx)`;
 /// (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`.
 #[inline(always)]
-fn pair_multiplier(pair: usize, kx: f32, kz: f32, lambda: f32) -> Complex32 {
+fn pair_multiplier<const PAIR: usize>(kx: f32, kz: f32, lambda: f32) -> Complex32 {
     let k2 = kx * kx + kz * kz;
     let inv_k = if k2 > 0.0 { 1.0 / k2.sqrt() } else { 0.0 };
     let l = lambda * inv_k;
-    match pair {
+    match PAIR {
         PAIR_H_DX => Complex32::new(1.0 - l * kx, 0.0),
         PAIR_DZ_HX => Complex32::new(-kx, l * kz),
         PAIR_HZ_DXX => Complex32::new(0.0, kz - l * kx * kx),
