@@ -115,6 +115,9 @@ pub(super) fn wave_gaussians(seed: u32, cascade: u32, nx: i32, nz: i32) -> (f64,
     (r * c, r * s)
 }
 
+/// One row of the half spectrum while it is set up: h0, its mirror, frequencies, variance.
+type SetupRow = (Vec<Complex32>, Vec<Complex32>, Vec<f64>, f64);
+
 /// What a cascade needs to know to set itself up.
 pub(super) struct CascadeSetup<'a> {
     pub spectrum: &'a DirectionalSpectrum,
@@ -147,7 +150,7 @@ impl Cascade {
             Complex32::new((xr * scale) as f32, (xi * scale) as f32)
         };
         // Rows in parallel (each entry depends only on its wave vector), summed in row order.
-        let rows: Vec<(Vec<Complex32>, Vec<Complex32>, Vec<f64>, f64)> = (0..half)
+        let rows: Vec<SetupRow> = (0..half)
             .into_par_iter()
             .map(|a| {
                 let nx = signed_index(a, n);
