@@ -161,22 +161,14 @@ impl FftOcean {
         }
         let t2 = Instant::now();
         if self.params.foam {
-            let (first, rest) = self.cascades.split_first().expect("at least one cascade");
-            let dx = first.patch / first.n as f32;
+            // Foam follows the largest cascade alone: its grid is where foam is stored, and the
+            // smaller cascades' short waves, sampled on it, would alias into speckle and make the
+            // threshold depend on the number of cascades.
+            let first = &self.cascades[0];
+            let (dxx_pair, jac_pair) = (&first.fields[PAIR_HZ_DXX], &first.fields[PAIR_DZZ_DXZ]);
             self.foam.update(t, |i, j| {
                 let idx = j * first.n + i;
-                let mut d = [
-                    first.fields[PAIR_HZ_DXX][idx].im,
-                    first.fields[PAIR_DZZ_DXZ][idx].re,
-                    first.fields[PAIR_DZZ_DXZ][idx].im,
-                ];
-                for c in rest {
-                    let f = sample(c, i as f32 * dx, j as f32 * dx);
-                    d[0] += f[5];
-                    d[1] += f[6];
-                    d[2] += f[7];
-                }
-                jacobian(d[0], d[1], d[2])
+                jacobian(dxx_pair[idx].im, jac_pair[idx].re, jac_pair[idx].im)
             });
         }
         let t3 = Instant::now();
