@@ -32,10 +32,13 @@ pub fn sin_cos_turns(c: f32) -> (f32, f32) {
     let x2 = x * x;
     let s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0)));
     let co = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
+    // Rotation by q quarter turns: (s, c), (c, -s), (-s, -c), (-c, s) for q = 0..3 (mod 4), as
+    // arithmetic on masks rather than branches.
     let qi = (q as i32) & 3;
-    let (s1, c1) = if qi & 1 == 1 { (co, s) } else { (s, co) };
-    let sin = if qi >= 2 { -s1 } else { s1 };
-    let cos = if qi == 1 || qi == 2 { -c1 } else { c1 };
+    let swap = (qi & 1) as f32;
+    let (s1, c1) = (s + swap * (co - s), co + swap * (s - co));
+    let sin = s1 * (1 - 2 * ((qi >> 1) & 1)) as f32;
+    let cos = c1 * (1 - 2 * (((qi + 1) >> 1) & 1)) as f32;
     (sin, cos)
 }
 

@@ -292,11 +292,16 @@ impl Cascade {
         self.fields[pair].par_chunks_mut(rows * n).zip(self.scratch.par_iter_mut()).enumerate().for_each(
             |(task, (block, scratch))| {
                 let z0 = task * rows;
-                // Writes run along each output row; the reads down a column of `work` touch
-                // rows * 8 bytes of each padded row, which stay in cache across the block.
-                for (r, row) in block.chunks_exact_mut(n).enumerate() {
-                    for (out, src) in row.iter_mut().zip(work.chunks_exact(stride)) {
-                        *out = src[z0 + r];
+                // Tiles of TILE kx by `rows` z: the tile's source lines (TILE rows of `work`,
+                // rows * 8 bytes each) stay in L1 while the writes run along the output rows.
+                const TILE: usize = 64;
+                for a0 in (0..n).step_by(TILE) {
+                    let a1 = (a0 + TILE).min(n);
+                    let src_rows = &work[a0 * stride..a1 * stride];
+                    for (r, row) in block.chunks_exact_mut(n).enumerate() {
+                        for (out, src) in row[a0..a1].iter_mut().zip(src_rows.chunks_exact(stride)) {
+                            *out = src[z0 + r];
+                        }
                     }
                 }
                 fft.process_with_scratch(block, scratch);
