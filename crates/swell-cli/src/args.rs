@@ -31,6 +31,18 @@ pub enum Command {
     Bake(BakeArgs),
     /// Open the interactive viewer (see docs/viewer.md).
     View(ViewArgs),
+    /// Print the sea state realised by a spectral (`model = "fft"`) scene, as JSON.
+    Stats(StatsArgs),
+}
+
+/// `swell stats`.
+#[derive(Args, Debug)]
+pub struct StatsArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Simulation time, in seconds.
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true)]
+    pub time: f64,
 }
 
 /// Where the scene comes from: exactly one of a preset or a file.
@@ -131,7 +143,7 @@ pub struct TerrainArgs {
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// grid-size, polygons, waves (paper 000); zbuffer-threads, zbuffer-sizes (paper 001); realtime;
-    /// or all.
+    /// all (every one of these); or ocean (the FFT ocean's step, stage by stage, printed to stdout).
     #[arg(value_name = "EXPERIMENT")]
     pub experiment: String,
     /// Directory for the results (created if missing): EXPERIMENT.md, .json and .png.
@@ -143,6 +155,18 @@ pub struct BenchArgs {
     /// Exactly N timed runs per row and no warm-up (for tests).
     #[arg(long, value_name = "N", hide = true)]
     pub runs: Option<u32>,
+    /// `ocean` only: time one FFT grid side N (a power of two in [16, 2048]) instead of 64..1024.
+    #[arg(long, value_name = "N")]
+    pub grid: Option<u32>,
+    /// `ocean` only: timed steps after the warm-up, 1 to 100000 (default: about a second's worth).
+    #[arg(long, value_name = "N")]
+    pub steps: Option<u32>,
+    /// `ocean` only: worker threads, 0 = one per core.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub threads: u32,
+    /// `ocean` only: print one JSON object per grid, {"grid": N, "median_ms": ..., "stages": {...}}.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `swell export`.

@@ -8,6 +8,7 @@
 //! `fn(&Context) -> Result<Report>` and add one line to [`EXPERIMENTS`].
 
 mod machine;
+pub mod ocean_step;
 mod paper000;
 mod paper001;
 mod plot;

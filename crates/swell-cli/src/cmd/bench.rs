@@ -11,6 +11,9 @@ use crate::bench::{run_one, select, Context, Machine, Repetitions};
 const MAX_RUNS: u32 = 10_000;
 
 pub fn run(a: BenchArgs) -> Result<()> {
+    if a.experiment == "ocean" {
+        return crate::bench::ocean_step::run(&a);
+    }
     let experiments = select(&a.experiment)?;
     let reps = match a.runs {
         Some(n) if !(1..=MAX_RUNS).contains(&n) => {

@@ -7,6 +7,7 @@ mod terrain;
 // issue 8: meshes and map bakes.
 mod bake;
 mod export;
+mod stats;
 mod view;
 
 use swell::scene::{preset, Scene, MAX_THREADS};
@@ -24,6 +25,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Export(a) => export::run(a),
         Command::Bake(a) => bake::run(a),
         Command::View(a) => view::run(a),
+        Command::Stats(a) => stats::run(a),
     }
 }
 

@@ -189,7 +189,7 @@ mod tests {
     fn switching_models_keeps_the_patch_and_carries_the_waves() {
         let sea = preset("sea").unwrap().water.unwrap();
         let sines = switch_model(Some(&sea), "sines").unwrap();
-        assert_eq!((sines.surface, sines.material), (sea.surface, sea.material));
+        assert_eq!((&sines.surface, &sines.material), (&sea.surface, &sea.material));
         let WaterModelSpec::Sines(s) = &sines.model else { panic!("{sines:?}") };
         assert_eq!(s.waves.len(), 10);
         let back = switch_model(Some(&sines), "gerstner").unwrap();

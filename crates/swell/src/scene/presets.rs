@@ -102,6 +102,11 @@ pub const PRESETS: &[Preset] = &[
         description: "swell running up a sloping sea floor to a sandy beach",
         toml: include_str!("../../presets/coast.toml"),
     },
+    Preset {
+        name: "ocean",
+        description: "spectral (FFT) ocean: a JONSWAP wind sea of 14 m/s with choppy crests and foam",
+        toml: include_str!("../../presets/ocean.toml"),
+    },
 ];
 
 /// The scene of preset `name`, parsed and validated.

@@ -25,7 +25,7 @@ use crate::water::{
     wave_set, Airy, AiryParams, GerstnerTessendorf, NoiseParams, NoiseWaves, RadialWave, RadialWaveParams, River,
     RiverParams, SpringMesh, SpringMeshParams, SteepSines, SteepSinesParams, TessendorfParams, WaveSetParams,
 };
-use crate::water::{Gerstner, GerstnerWave, SineWave, SumOfSines, WaveModel};
+use crate::water::{FftOcean, FftOceanParams, Gerstner, GerstnerWave, SineWave, SumOfSines, WaveModel};
 
 /// The water patch and its sampling grid.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -103,17 +103,31 @@ pub enum WaterModelSpec {
     Springs(SpringMeshParams),
     /// `model = "river"`: paper 004's river between oscillating banks.
     River(RiverParams),
+    /// `model = "fft"`: the spectral (Tessendorf) ocean; its keys sit in `[water]`.
+    Fft(FftOceanParams),
 }
 
 /// The names `water.model` accepts.
-pub const WATER_MODELS: &[&str] =
-    &["gerstner", "sines", "tessendorf", "wave-set", "airy", "steep-sines", "radial", "noise", "springs", "river"];
+pub const WATER_MODELS: &[&str] = &[
+    "gerstner",
+    "sines",
+    "tessendorf",
+    "wave-set",
+    "airy",
+    "steep-sines",
+    "radial",
+    "noise",
+    "springs",
+    "river",
+    "fft",
+];
 
 impl WaterModelSpec {
     /// The period (s) after which the model repeats exactly, if it was given one.
     pub fn loop_period(&self) -> Option<f64> {
         match self {
             WaterModelSpec::Tessendorf(p) => p.loop_period.map(f64::from),
+            WaterModelSpec::Fft(p) => p.loop_period.map(f64::from),
             _ => None,
         }
     }
@@ -131,6 +145,7 @@ impl WaterModelSpec {
             WaterModelSpec::Noise(p) => Box::new(NoiseWaves::new(*p)?),
             WaterModelSpec::Springs(p) => Box::new(SpringMesh::new(*p)?),
             WaterModelSpec::River(p) => Box::new(River::new(*p)?),
+            WaterModelSpec::Fft(p) => Box::new(FftOcean::new(p)?),
         })
     }
 
@@ -146,6 +161,7 @@ impl WaterModelSpec {
             "noise" => WaterModelSpec::Noise(deserialize_at(rest, "water", source)?),
             "springs" => WaterModelSpec::Springs(deserialize_at(rest, "water", source)?),
             "river" => WaterModelSpec::River(deserialize_at(rest, "water", source)?),
+            "fft" => WaterModelSpec::Fft(deserialize_at(rest, "water", source)?),
             other => {
                 return Err(Error::Parse {
                     path: source.to_string(),
@@ -265,6 +281,19 @@ mod tests {
     }
 
     #[test]
+    fn an_fft_section_round_trips_through_toml() {
+        let w = parse(
+            "model = 'fft'\ngrid = 64\nspectrum = 'tma'\ndepth = 12.0\nspreading = 'donelan-banner'\n\
+             loop_period = 30.0\n[swell]\nheight = 0.8\n",
+        )
+        .unwrap();
+        let WaterModelSpec::Fft(p) = &w.model else { panic!("not fft: {:?}", w.model) };
+        assert_eq!((p.grid, p.depth, p.swell.unwrap().height), (64, Some(12.0), 0.8));
+        assert_eq!(WaterSpec::from_table(w.to_table(), "again").unwrap(), w);
+        w.model.build().unwrap();
+    }
+
+    #[test]
     fn errors_name_the_full_key_path() {
         let e = parse("model = 'gerstner'\n[[waves]]\namplitude = 1.0\nwavelength = 'x'\n").unwrap_err();
         assert!(e.to_string().contains("water.waves[0].wavelength"), "{e}");
@@ -272,6 +301,10 @@ mod tests {
         assert!(e.to_string().contains("bogus"), "{e}");
         let e = parse("model = 'tsunami'\n").unwrap_err();
         assert!(e.to_string().contains("gerstner, sines"), "{e}");
+        let e = parse("model = 'fft'\ngrid = 100\n").unwrap().model.build().err().unwrap();
+        assert_eq!(e.to_string(), "water.grid = 100 is outside powers of two in [16, 2048]");
+        let e = parse("model = 'fft'\nspectrum = 'bretschneider'\n").unwrap_err();
+        assert!(e.to_string().contains("water.spectrum"), "{e}");
         let e = parse("model = 'sines'\ncells = [0, 4]\n").unwrap();
         assert_eq!(e.validate().unwrap_err().to_string(), "water.cells[0] = 0 is outside [1, 4096]");
     }

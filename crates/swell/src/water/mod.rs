@@ -6,6 +6,8 @@
 //! evaluation and the height query from [`evaluate_pointwise`] and [`height_by_inversion`].
 
 mod airy;
+mod fft_ocean;
+mod foam;
 mod gerstner;
 mod gerstner_tessendorf;
 mod noise_waves;
@@ -19,6 +21,11 @@ mod wave_model;
 mod wave_set;
 
 pub use airy::{Airy, AiryParams, AiryWave, MAX_AIRY_WAVES};
+pub use fft_ocean::{
+    FftOcean, FftOceanParams, SeaState, SpectrumKind, StageTimes, SwellParams, CASCADE_SCALE, FFT_GRID_RANGE,
+    MAX_CASCADES,
+};
+pub use foam::{foam_coverage, FoamField, FOAM_RAMP};
 pub use gerstner::{Gerstner, GerstnerWave, MAX_GERSTNER_WAVES};
 pub use gerstner_tessendorf::{GerstnerTessendorf, TessendorfParams, TessendorfWave, MAX_TESSENDORF_WAVES};
 pub use noise_waves::{NoiseFrame, NoiseParams, NoiseWaves, MAX_NOISE_OCTAVES};

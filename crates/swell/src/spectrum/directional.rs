@@ -1,0 +1,142 @@
+//! A wind sea and an optional swell, spread over directions: the `F(kx, kz)` a spectral ocean samples.
+
+use std::f64::consts::TAU;
+
+use super::{Jonswap, OceanDispersion, Phillips, PiersonMoskowitz, Spreading, Swell, Tma};
+
+/// The wind-sea spectrum model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WindSea {
+    /// Tessendorf's Phillips spectrum (defined in wavenumber).
+    Phillips(Phillips),
+    /// Fully developed sea.
+    PiersonMoskowitz(PiersonMoskowitz),
+    /// Fetch-limited sea.
+    Jonswap(Jonswap),
+    /// Fetch-limited sea in finite depth.
+    Tma(Tma),
+}
+
+impl WindSea {
+    /// Omnidirectional wavenumber spectrum `Φ(k) = S(w(k)) dw/dk` (m³/rad) at k (rad/m).
+    pub fn density_k(&self, k: f64, dispersion: &OceanDispersion) -> f64 {
+        if k <= 0.0 {
+            return 0.0;
+        }
+        let w = dispersion.omega(k);
+        let s = match self {
+            WindSea::Phillips(p) => return p.density_k(k),
+            WindSea::PiersonMoskowitz(p) => p.density(w),
+            WindSea::Jonswap(j) => j.density(w),
+            WindSea::Tma(t) => t.density(w),
+        };
+        s * dispersion.group_velocity(k)
+    }
+
+    /// Peak angular frequency (rad/s).
+    pub fn peak_omega(&self, dispersion: &OceanDispersion) -> f64 {
+        match self {
+            WindSea::Phillips(p) => dispersion.omega(p.peak_wavenumber()),
+            WindSea::PiersonMoskowitz(p) => p.peak_omega(),
+            WindSea::Jonswap(j) => j.peak_omega,
+            WindSea::Tma(t) => t.jonswap.peak_omega,
+        }
+    }
+}
+
+/// The directional wavenumber spectrum of a sea: a wind sea spread about the wind, plus a swell.
+///
+/// `F(kx, kz) = Φ(k) D(θ - θ_wind) / k + Φ_swell(k) D_swell(θ - θ_swell) / k` (m⁴/rad²), where
+/// `θ = atan2(kz, kx)` is the direction a wave travels; `∫∫ F dkx dkz` is the height variance m0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionalSpectrum {
+    /// The wind sea.
+    pub wind_sea: WindSea,
+    /// Its spreading about the wind direction.
+    pub spreading: Spreading,
+    /// Direction the wind blows towards (rad, from +X towards +Z).
+    pub wind_direction: f64,
+    /// 10 m wind speed U10 (m/s), used by wind-dependent spreading.
+    pub wind_speed: f64,
+    /// Dispersion relation (depth).
+    pub dispersion: OceanDispersion,
+    /// Optional swell added to the wind sea.
+    pub swell: Option<Swell>,
+}
+
+impl DirectionalSpectrum {
+    /// F(kx, kz) in m⁴/rad² (m² per (rad/m)²) at wave vector (kx, kz) in rad/m.
+    pub fn density(&self, kx: f64, kz: f64) -> f64 {
+        let k = kx.hypot(kz);
+        if k <= 0.0 {
+            return 0.0;
+        }
+        let theta = kz.atan2(kx);
+        let w = self.dispersion.omega(k);
+        let wp = self.wind_sea.peak_omega(&self.dispersion);
+        let mut f = self.wind_sea.density_k(k, &self.dispersion)
+            * self.spreading.density(theta - self.wind_direction, w, wp, self.wind_speed);
+        if let Some(s) = &self.swell {
+            f += s.density(w)
+                * self.dispersion.group_velocity(k)
+                * s.spreading.density(theta - s.direction, w, s.peak_omega(), self.wind_speed);
+        }
+        f / k
+    }
+
+    /// Peak period (s) of the stronger component at its own peak (the wind sea unless the swell's
+    /// peak density is higher).
+    pub fn peak_period(&self) -> f64 {
+        let wp = self.wind_sea.peak_omega(&self.dispersion);
+        let mut best = (self.wind_sea.density_k(self.dispersion.wavenumber(wp), &self.dispersion), wp);
+        if let Some(s) = &self.swell {
+            let ws = s.peak_omega();
+            let k = self.dispersion.wavenumber(ws);
+            let ds = s.density(ws) * self.dispersion.group_velocity(k);
+            if ds > best.0 {
+                best = (ds, ws);
+            }
+        }
+        TAU / best.1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::{frequency_moment, Jonswap};
+
+    /// `∫∫ F dkx dkz` in polar coordinates: `∫ k dk ∫ dθ F`.
+    fn variance(s: &DirectionalSpectrum, k_max: f64) -> f64 {
+        let (nk, nt) = (4000, 720);
+        let dk = k_max / nk as f64;
+        let dt = TAU / nt as f64;
+        let mut sum = 0.0;
+        for i in 0..nk {
+            let k = (i as f64 + 0.5) * dk;
+            for j in 0..nt {
+                let t = (j as f64 + 0.5) * dt;
+                sum += s.density(k * t.cos(), k * t.sin()) * k * dk * dt;
+            }
+        }
+        sum
+    }
+
+    #[test]
+    fn spreading_keeps_the_variance_of_the_frequency_spectrum() {
+        let j = Jonswap::from_wind(10.0, 80e3, 3.3);
+        let m0 = frequency_moment(|w| j.density(w), 0, 0.05, (9.81f64 * 4.0).sqrt(), 40_000);
+        for spreading in [Spreading::Cos2, Spreading::Mitsuyasu, Spreading::DonelanBanner] {
+            let s = DirectionalSpectrum {
+                wind_sea: WindSea::Jonswap(j),
+                spreading,
+                wind_direction: 0.7,
+                wind_speed: 10.0,
+                dispersion: OceanDispersion::DEEP,
+                swell: None,
+            };
+            let v = variance(&s, 4.0);
+            assert!((v / m0 - 1.0).abs() < 2e-3, "{spreading:?}: {v} vs {m0}");
+        }
+    }
+}

@@ -1,0 +1,88 @@
+//! The TMA spectrum: JONSWAP in water of finite depth.
+//!
+//! Bouws, Günther, Rosenthal and Vincent 1985 ("Similarity of the wind wave spectrum in finite depth
+//! water", J. Geophys. Res. 90(C1)): `S_TMA(w) = S_JONSWAP(w) φ(w, D)` with Kitaigorodskii's depth
+//! factor, the ratio between the finite-depth and deep-water forms of the k⁻³ saturation range:
+//!
+//! ```text
+//! φ(w, D) = [k⁻³ dk/dw] / [k∞⁻³ dk∞/dw] = tanh²(kD) / (1 + 2kD / sinh(2kD))
+//! ```
+//!
+//! with k from `w² = g k tanh(kD)`. The closed form follows from differentiating the dispersion
+//! relation; it is used here exactly rather than through the usual piecewise approximation in
+//! `w_h = w sqrt(D/g)`. φ is 1 in deep water and tends to `(w_h²)/2` in very shallow water.
+
+use super::jonswap::Jonswap;
+use super::ocean_dispersion::OceanDispersion;
+
+/// The TMA spectrum: a JONSWAP sea over water of a given depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tma {
+    /// The deep-water JONSWAP spectrum for the same wind and fetch.
+    pub jonswap: Jonswap,
+    /// Water depth D (m, > 0).
+    pub depth: f64,
+}
+
+/// Kitaigorodskii's depth factor φ(w, D) in [0, 1] for angular frequency w (rad/s) and depth D (m).
+pub fn tma_depth_factor(omega: f64, depth: f64) -> f64 {
+    let k = OceanDispersion { depth: Some(depth) }.wavenumber(omega);
+    let kd = k * depth;
+    if kd > 20.0 {
+        return 1.0;
+    }
+    if kd <= 0.0 {
+        return 0.0;
+    }
+    let t = kd.tanh();
+    t * t / (1.0 + 2.0 * kd / (2.0 * kd).sinh())
+}
+
+impl Tma {
+    /// S(w) in m² s/rad at angular frequency w (rad/s).
+    pub fn density(&self, omega: f64) -> f64 {
+        self.jonswap.density(omega) * tma_depth_factor(omega, self.depth)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::{frequency_moment, G};
+
+    #[test]
+    fn the_depth_factor_matches_its_definition_by_differentiation() {
+        for depth in [1.0, 4.0, 30.0] {
+            let disp = OceanDispersion { depth: Some(depth) };
+            for w in [0.3, 0.8, 1.5, 3.0] {
+                let h = 1e-5 * w;
+                let k = disp.wavenumber(w);
+                let dk = (disp.wavenumber(w + h) - disp.wavenumber(w - h)) / (2.0 * h);
+                let kinf = w * w / G;
+                let want = (dk / (k * k * k)) / ((2.0 * w / G) / (kinf * kinf * kinf));
+                assert!((tma_depth_factor(w, depth) - want).abs() < 1e-6, "D {depth} w {w}");
+            }
+        }
+    }
+
+    #[test]
+    fn shallow_water_lowers_the_energy_by_the_depth_factor() {
+        let j = Jonswap::from_wind(12.0, 150e3, 3.3);
+        let m0 = |f: &dyn Fn(f64) -> f64| frequency_moment(f, 0, 0.05, 20.0, 20_000);
+        let deep = m0(&|w| j.density(w));
+        let mut last = deep;
+        for depth in [100.0, 20.0, 8.0, 3.0] {
+            let tma = Tma { jonswap: j, depth };
+            let shallow = m0(&|w| tma.density(w));
+            assert!(shallow < last, "depth {depth}: {shallow} not below {last}");
+            last = shallow;
+            // Pointwise, the ratio is exactly φ, which is below 1 and 1 in deep water.
+            let w = j.peak_omega;
+            let ratio = tma.density(w) / j.density(w);
+            assert!((ratio - tma_depth_factor(w, depth)).abs() < 1e-12 && ratio < 1.0);
+        }
+        assert!((Tma { jonswap: j, depth: 1e4 }.density(1.0) / j.density(1.0) - 1.0).abs() < 1e-12);
+        // At 3 m the 12 m/s sea keeps well under half its deep-water variance.
+        assert!(last < 0.5 * deep, "{last} vs {deep}");
+    }
+}

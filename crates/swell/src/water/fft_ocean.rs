@@ -1,0 +1,444 @@
+//! The statistical (FFT) ocean: Tessendorf's sea synthesised from an oceanographic spectrum.
+//!
+//! Paper 003 §1.2.2 (after Tessendorf 2001, "Simulating Ocean Water") calls this the best of the
+//! methods it surveys: a random sea whose wave heights follow a measured spectrum, synthesised each
+//! frame by inverse FFTs over a square periodic patch of side L on an N x N grid.
+//!
+//! - **Spectrum**: [`crate::spectrum::DirectionalSpectrum`] in physical units, so heights are metres
+//!   (`4 sqrt(m0)` is the significant wave height, and the tests check the realised sea against it).
+//! - **Randomness**: each wave vector's Gaussian pair is a hash of (seed, cascade, wave vector), so
+//!   the same seed gives the same sea on any thread count, and a finer grid keeps the large waves.
+//! - **Outputs per step** ([`FftOcean::advance`]): height, choppy horizontal displacement (positive
+//!   choppiness sharpens crests), slopes and the Jacobian terms as spectral derivatives, and foam.
+//! - **Cascades**: 1-4 patches of sides `L / 4.36^c`, each holding its own band of wavenumbers so no
+//!   wave is counted twice; their sum hides the tiling of a single patch.
+//! - **Looping**: with a loop period T, frequencies are quantised so the sea repeats after T.
+//! - **Sampling** ([`WaveModel::evaluate`]): fields are sampled bilinearly, periodically, at each
+//!   mesh vertex's rest position; normals come from the sampled spectral derivatives.
+//!
+//! The synthesis itself (layout, packing, sign conventions) is documented in `fft_ocean/cascade.rs`.
+
+mod cascade;
+mod params;
+
+use std::time::Instant;
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use self::cascade::{Cascade, CascadeSetup, PAIR_DZZ_DXZ, PAIR_HZ_DXX, PAIR_H_DX};
+pub use self::params::{FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE, MAX_CASCADES};
+use super::foam::FoamField;
+use super::wave_model::{WaveModel, INVERSION_MAX_ITERATIONS, INVERSION_TOLERANCE};
+use crate::error::Result;
+use crate::math::{fast_floor, GridSpec};
+use crate::spectrum::DirectionalSpectrum;
+
+/// Ratio of the sides of successive cascades: sqrt(19) ≈ 4.36, irrational so the tiles of different
+/// cascades never line up, and large enough that each cascade adds a decade of short waves.
+pub const CASCADE_SCALE: f32 = 4.358_899;
+
+/// Fraction of a cascade's Nyquist wavenumber `π N / L` where the next, smaller cascade takes over.
+/// Half: the upper half of a grid's band is resolved by few samples per wave, the next cascade
+/// resolves it better.
+const CASCADE_HANDOVER: f64 = 0.5;
+
+/// Wall-clock time of each stage of the last [`FftOcean::advance`], milliseconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct StageTimes {
+    /// Evolving `h(k, t)` from `h0` (phases).
+    pub evolve_ms: f64,
+    /// The inverse FFTs of the eight fields.
+    pub fft_ms: f64,
+    /// Jacobian and foam.
+    pub foam_ms: f64,
+}
+
+/// The sea state realised on the grid at the last [`FftOcean::advance`] (for `swell stats`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SeaState {
+    /// Time of the fields, s.
+    pub time: f64,
+    /// Significant height `4 sqrt(var(h))` realised on the grid, m.
+    pub hs_realised: f64,
+    /// The spectrum's own expectation `4 sqrt(m0)` over the grid's wave vectors, m.
+    pub hs_expected: f64,
+    /// Peak period of the spectrum, s.
+    pub peak_period: f64,
+    /// Mean height, m (0 up to rounding: the mean is not synthesised).
+    pub mean_height: f64,
+    /// Lowest and highest height on the grid, m.
+    pub min_height: f64,
+    /// Highest height on the grid, m.
+    pub max_height: f64,
+    /// Mean foam coverage in [0, 1].
+    pub foam_coverage: f64,
+}
+
+/// The FFT ocean. See the module documentation.
+pub struct FftOcean {
+    params: FftOceanParams,
+    spectrum: DirectionalSpectrum,
+    cascades: Vec<Cascade>,
+    foam: FoamField,
+    time: f64,
+    stage_times: StageTimes,
+}
+
+/// The eight fields at a point: h, Dx, Dz, hx, hz, Dxx, Dzz, Dxz (metres, or dimensionless slopes).
+type Fields = [f32; 8];
+
+impl FftOcean {
+    /// Validates `params`, builds the spectrum and the cascades and synthesises time 0.
+    ///
+    /// Setup costs O(cascades N²) spectrum evaluations and allocates every buffer the steps use.
+    pub fn new(params: &FftOceanParams) -> Result<Self> {
+        params.validate("water")?;
+        let spectrum = params.spectrum();
+        let n = params.grid as usize;
+        let count = params.cascades as usize;
+        let patches: Vec<f32> = (0..count).map(|c| params.patch_size / CASCADE_SCALE.powi(c as i32)).collect();
+        let handover = |c: usize| CASCADE_HANDOVER * std::f64::consts::PI * n as f64 / f64::from(patches[c]);
+        let cascades = (0..count)
+            .map(|c| {
+                let lo = if c == 0 { 0.0 } else { handover(c - 1) };
+                let hi = if c + 1 == count { f64::INFINITY } else { handover(c) };
+                Cascade::new(&CascadeSetup {
+                    spectrum: &spectrum,
+                    n,
+                    patch: patches[c],
+                    band: (lo, hi),
+                    seed: params.seed,
+                    index: c as u32,
+                    choppiness: params.choppiness,
+                    loop_period: params.loop_period.map(f64::from),
+                })
+            })
+            .collect();
+        let foam = FoamField::new(n, params.foam_threshold, params.foam_fade_s);
+        let mut ocean = Self {
+            params: params.clone(),
+            spectrum,
+            cascades,
+            foam,
+            time: f64::NAN,
+            stage_times: StageTimes::default(),
+        };
+        ocean.step(0.0);
+        Ok(ocean)
+    }
+
+    /// The parameters, as validated.
+    pub fn params(&self) -> &FftOceanParams {
+        &self.params
+    }
+
+    /// The directional spectrum the sea follows.
+    pub fn spectrum(&self) -> &DirectionalSpectrum {
+        &self.spectrum
+    }
+
+    /// Time (s) of the fields, set by the last [`WaveModel::advance`].
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// How long each stage of the last step took.
+    pub fn stage_times(&self) -> StageTimes {
+        self.stage_times
+    }
+
+    /// Synthesises every field for time `t` (s); no allocation.
+    fn step(&mut self, t: f64) {
+        let t0 = Instant::now();
+        for c in &mut self.cascades {
+            c.evolve(t);
+        }
+        let t1 = Instant::now();
+        for c in &mut self.cascades {
+            c.synthesize();
+        }
+        let t2 = Instant::now();
+        if self.params.foam {
+            // Foam follows the largest cascade alone: its grid is where foam is stored, and the
+            // smaller cascades' short waves, sampled on it, would alias into speckle and make the
+            // threshold depend on the number of cascades.
+            let first = &self.cascades[0];
+            let (dxx_pair, jac_pair) = (&first.fields[PAIR_HZ_DXX], &first.fields[PAIR_DZZ_DXZ]);
+            self.foam.update(t, |i, j| {
+                let idx = j * first.n + i;
+                jacobian(dxx_pair[idx].im, jac_pair[idx].re, jac_pair[idx].im)
+            });
+        }
+        let t3 = Instant::now();
+        self.time = t;
+        let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
+        self.stage_times = StageTimes { evolve_ms: ms(t0, t1), fft_ms: ms(t1, t2), foam_ms: ms(t2, t3) };
+    }
+
+    /// The eight fields summed over cascades at the rest point (x, z) (m), at the last step's time.
+    fn fields_at(&self, x: f32, z: f32) -> Fields {
+        let mut acc = [0.0; 8];
+        for c in &self.cascades {
+            let f = sample(c, x, z);
+            for (a, v) in acc.iter_mut().zip(f) {
+                *a += v;
+            }
+        }
+        acc
+    }
+
+    /// If `grid` samples exactly the single cascade's grid points (same spacing, origin on a grid
+    /// point), the field index of its vertex (0, 0): evaluation then reads samples directly, which
+    /// is exact and about three times faster than bilinear sampling.
+    fn aligned_index(&self, grid: &GridSpec) -> Option<(i64, i64)> {
+        let [c] = self.cascades.as_slice() else { return None };
+        let dx = c.patch / c.n as f32;
+        let s = grid.spacing();
+        let (u, v) = (grid.origin.x / dx, grid.origin.y / dx);
+        let close = |a: f32, b: f32| (a - b).abs() <= 1e-6 * b.abs().max(1.0);
+        (close(s.x, dx) && close(s.y, dx) && close(u, u.round()) && close(v, v.round()))
+            .then(|| (u.round() as i64, v.round() as i64))
+    }
+
+    /// The eight fields of the single cascade at sample (i, j), wrapped periodically.
+    fn fields_at_sample(&self, i: i64, j: i64) -> Fields {
+        let c = &self.cascades[0];
+        let mask = c.n as i64 - 1;
+        let idx = (j & mask) as usize * c.n + (i & mask) as usize;
+        let mut out = [0.0; 8];
+        for (p, field) in c.fields.iter().enumerate() {
+            out[2 * p] = field[idx].re;
+            out[2 * p + 1] = field[idx].im;
+        }
+        out
+    }
+
+    /// Displacement (Dx, h, Dz) in metres of the water that rests at (x, z), at the time of the last
+    /// [`WaveModel::advance`]: the displaced point is `(x + Dx, h, z + Dz)`.
+    pub fn displacement_at(&self, x: f32, z: f32) -> Vec3 {
+        let f = self.fields_at(x, z);
+        Vec3::new(f[1], f[0], f[2])
+    }
+
+    /// The sea state realised on the first cascade's grid (plus the others sampled there).
+    pub fn sea_state(&self) -> SeaState {
+        let first = &self.cascades[0];
+        let n = first.n;
+        let dx = first.patch / n as f32;
+        let heights: Vec<f64> = (0..n * n)
+            .into_par_iter()
+            .map(|idx| {
+                let (i, j) = (idx % n, idx / n);
+                let mut h = first.fields[PAIR_H_DX][idx].re;
+                for c in &self.cascades[1..] {
+                    h += sample(c, i as f32 * dx, j as f32 * dx)[0];
+                }
+                f64::from(h)
+            })
+            .collect();
+        let count = heights.len() as f64;
+        let mean = heights.iter().sum::<f64>() / count;
+        let var = heights.iter().map(|h| (h - mean).powi(2)).sum::<f64>() / count;
+        let variance: f64 = self.cascades.iter().map(|c| c.variance).sum();
+        SeaState {
+            time: self.time,
+            hs_realised: 4.0 * var.sqrt(),
+            hs_expected: 4.0 * variance.sqrt(),
+            peak_period: self.spectrum.peak_period(),
+            mean_height: mean,
+            min_height: heights.iter().copied().fold(f64::INFINITY, f64::min),
+            max_height: heights.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            foam_coverage: if self.params.foam { f64::from(self.foam.mean()) } else { 0.0 },
+        }
+    }
+
+    /// (h, Dx, Dz) at rest point (x, z) and any time t, by summing every wave directly in f64.
+    ///
+    /// O(cascades N²) per call: the slow, obviously right oracle the FFT is tested against, and
+    /// what [`WaveModel::height_at`] uses for a time other than the last step's.
+    pub fn exact_displacement(&self, x: f64, z: f64, t: f64) -> [f64; 3] {
+        let f = self.exact_fields(x, z, t);
+        [f[0], f[1], f[2]]
+    }
+
+    /// All eight fields (h, Dx, Dz, hx, hz, Dxx, Dzz, Dxz) at rest point (x, z), time t, summed
+    /// wave by wave (a naive inverse DFT evaluated at one point).
+    fn exact_fields(&self, x: f64, z: f64, t: f64) -> [f64; 8] {
+        let lambda = f64::from(self.params.choppiness);
+        let mut out = [0.0; 8];
+        for c in &self.cascades {
+            let dk = std::f64::consts::TAU / f64::from(c.patch);
+            for (nx, nz, h0, hm, f) in c.half_spectrum() {
+                if h0.norm_sqr() == 0.0 && hm.norm_sqr() == 0.0 {
+                    continue;
+                }
+                let (kx, kz) = (f64::from(nx) * dk, f64::from(nz) * dk);
+                let k = kx.hypot(kz);
+                let (s, co) = (std::f64::consts::TAU * (f * t).fract()).sin_cos();
+                // c = h0 e^{-iφ} + hm e^{iφ}
+                let (a, b) = ((f64::from(h0.re), f64::from(h0.im)), (f64::from(hm.re), f64::from(hm.im)));
+                let cr = a.0 * co + a.1 * s + b.0 * co - b.1 * s;
+                let ci = a.1 * co - a.0 * s + b.1 * co + b.0 * s;
+                let (es, ec) = (kx * x + kz * z).sin_cos();
+                // c e^{ik.x}: its real part is the wave, its imaginary part gives Re(i m c e^{ik.x}) = -m vi.
+                let (vr, vi) = (cr * ec - ci * es, cr * es + ci * ec);
+                // Row nx = 0 holds both k and -k; other rows stand for their mirror too.
+                let w = if nx == 0 { 1.0 } else { 2.0 };
+                let l = lambda / k;
+                let terms = [
+                    vr,
+                    -l * kx * vi,
+                    -l * kz * vi,
+                    -kx * vi,
+                    -kz * vi,
+                    -l * kx * kx * vr,
+                    -l * kz * kz * vr,
+                    -l * kx * kz * vr,
+                ];
+                for (o, v) in out.iter_mut().zip(terms) {
+                    *o += w * v;
+                }
+            }
+        }
+        out
+    }
+}
+
+/// `J = (1 + Dxx)(1 + Dzz) - Dxz²`, the Jacobian of the horizontal map (Tessendorf 2001 §3.5).
+fn jacobian(dxx: f32, dzz: f32, dxz: f32) -> f32 {
+    (1.0 + dxx) * (1.0 + dzz) - dxz * dxz
+}
+
+/// Bilinear, periodic sample of a cascade's eight fields at the local point (x, z) (m).
+fn sample(c: &Cascade, x: f32, z: f32) -> Fields {
+    let n = c.n;
+    let inv_dx = n as f32 / c.patch;
+    let (u, v) = (x * inv_dx, z * inv_dx);
+    let (fu, fv) = (fast_floor(u), fast_floor(v));
+    let (tx, tz) = (u - fu, v - fv);
+    let mask = n as i64 - 1;
+    let i0 = (fu as i64 & mask) as usize;
+    let j0 = (fv as i64 & mask) as usize;
+    let (i1, j1) = ((i0 + 1) & mask as usize, (j0 + 1) & mask as usize);
+    let w = [(1.0 - tx) * (1.0 - tz), tx * (1.0 - tz), (1.0 - tx) * tz, tx * tz];
+    let idx = [j0 * n + i0, j0 * n + i1, j1 * n + i0, j1 * n + i1];
+    let mut out = [0.0; 8];
+    for (p, field) in c.fields.iter().enumerate() {
+        let (mut re, mut im) = (0.0, 0.0);
+        for (wk, &ik) in w.iter().zip(&idx) {
+            re += wk * field[ik].re;
+            im += wk * field[ik].im;
+        }
+        out[2 * p] = re;
+        out[2 * p + 1] = im;
+    }
+    // Packed order (h, Dx), (Dz, hx), (hz, Dxx), (Dzz, Dxz) -> h, Dx, Dz, hx, hz, Dxx, Dzz, Dxz.
+    out
+}
+
+/// Unit normal of the displaced surface from the eight fields: the cross product of the tangents
+/// `dP/dz = (Dxz, hz, 1 + Dzz)` and `dP/dx = (1 + Dxx, hx, Dxz)` of `P = (x + Dx, h, z + Dz)`.
+fn normal_of(f: &Fields) -> Vec3 {
+    let tangent_x = Vec3::new(1.0 + f[5], f[3], f[7]);
+    let tangent_z = Vec3::new(f[7], f[4], 1.0 + f[6]);
+    tangent_z.cross(tangent_x).normalize_or(Vec3::Y)
+}
+
+impl WaveModel for FftOcean {
+    /// Samples the fields of the last [`WaveModel::advance`] at every vertex's rest position; `t`
+    /// must be that step's time (the World always advances first), the fields are not re-synthesised.
+    fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
+        let n = grid.vertex_count();
+        assert!(positions.len() == n && normals.len() == n, "buffers must hold grid.vertex_count() = {n} vertices");
+        let _ = t;
+        let row = grid.verts_x();
+        let aligned = self.aligned_index(grid);
+        positions.par_chunks_mut(row).zip(normals.par_chunks_mut(row)).enumerate().for_each(|(j, (prow, nrow))| {
+            for (i, (p, nrm)) in prow.iter_mut().zip(nrow.iter_mut()).enumerate() {
+                let rest = grid.rest_position(i, j);
+                let f = match aligned {
+                    Some((i0, j0)) => self.fields_at_sample(i0 + i as i64, j0 + j as i64),
+                    None => self.fields_at(rest.x, rest.y),
+                };
+                *p = Vec3::new(rest.x + f[1], f[0], rest.y + f[2]);
+                *nrm = normal_of(&f);
+            }
+        });
+    }
+
+    /// Height above (x, z): inverts the horizontal displacement by damped fixed-point iteration
+    /// (as [`super::height_by_inversion`]) on the same bilinear fields [`WaveModel::evaluate`]
+    /// draws, so it agrees with the rendered mesh. For a `t` other than the last step's it sums the
+    /// waves directly ([`FftOcean::exact_displacement`], O(N²) per iteration).
+    fn height_at(&self, x: f32, z: f32, t: f64) -> f32 {
+        let exact = t != self.time;
+        let at = |r: Vec2| -> Vec3 {
+            if exact {
+                let d = self.exact_displacement(f64::from(r.x), f64::from(r.y), t);
+                Vec3::new(d[1] as f32, d[0] as f32, d[2] as f32)
+            } else {
+                self.displacement_at(r.x, r.y)
+            }
+        };
+        let target = Vec2::new(x, z);
+        let mut rest = target;
+        let mut best = (f32::INFINITY, 0.0);
+        for _ in 0..INVERSION_MAX_ITERATIONS {
+            let d = at(rest);
+            let landed = rest + Vec2::new(d.x, d.z);
+            let residual = (landed - target).length();
+            if residual < best.0 {
+                best = (residual, d.y);
+            }
+            if residual < INVERSION_TOLERANCE {
+                break;
+            }
+            rest += 0.75 * (target - landed);
+        }
+        best.1
+    }
+
+    fn advance(&mut self, t: f64) -> Result<()> {
+        if t != self.time {
+            self.step(t);
+        }
+        Ok(())
+    }
+
+    fn foam(&self, grid: &GridSpec, out: &mut [f32]) -> bool {
+        if !self.params.foam {
+            return false;
+        }
+        let first = &self.cascades[0];
+        let n = first.n;
+        let inv_dx = n as f32 / first.patch;
+        let values = &self.foam.values;
+        let mask = n as i64 - 1;
+        let aligned = self.aligned_index(grid);
+        out.par_chunks_mut(grid.verts_x()).enumerate().for_each(|(j, row)| {
+            if let Some((i0, j0)) = aligned {
+                let jj = ((j0 + j as i64) & mask) as usize * n;
+                for (i, o) in row.iter_mut().enumerate() {
+                    *o = values[jj + ((i0 + i as i64) & mask) as usize];
+                }
+                return;
+            }
+            for (i, o) in row.iter_mut().enumerate() {
+                let r = grid.rest_position(i, j) * inv_dx;
+                let (fu, fv) = (fast_floor(r.x), fast_floor(r.y));
+                let (tx, tz) = (r.x - fu, r.y - fv);
+                let (i0, j0) = ((fu as i64 & mask) as usize, (fv as i64 & mask) as usize);
+                let (i1, j1) = ((i0 + 1) & mask as usize, (j0 + 1) & mask as usize);
+                let top = values[j0 * n + i0] * (1.0 - tx) + values[j0 * n + i1] * tx;
+                let bottom = values[j1 * n + i0] * (1.0 - tx) + values[j1 * n + i1] * tx;
+                *o = top * (1.0 - tz) + bottom * tz;
+            }
+        });
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests;

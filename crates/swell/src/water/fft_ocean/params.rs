@@ -1,0 +1,195 @@
+//! The FFT ocean's parameters as a user gives them (`[water]` with `model = "fft"`), and their checks.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{check_count, check_range, Error, Result};
+use crate::spectrum::{
+    DirectionalSpectrum, Jonswap, OceanDispersion, Phillips, PiersonMoskowitz, Spreading, Swell, Tma, WindSea,
+};
+
+/// Smallest and largest FFT grid side.
+pub const FFT_GRID_RANGE: (u32, u32) = (16, 2048);
+/// Most cascades (patches of different sizes) one ocean sums.
+pub const MAX_CASCADES: u32 = 4;
+
+/// Which wind-sea spectrum (`spectrum` key).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpectrumKind {
+    /// Tessendorf's Phillips spectrum.
+    Phillips,
+    /// Pierson-Moskowitz, fully developed.
+    PiersonMoskowitz,
+    /// JONSWAP, fetch-limited.
+    Jonswap,
+    /// TMA: JONSWAP in finite depth (needs `depth`).
+    Tma,
+}
+
+/// A swell added to the wind sea (`[water.swell]`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SwellParams {
+    /// Significant height of the swell alone, m, in [0, 30]. Default 1.
+    pub height: f32,
+    /// Peak period, s, in [2, 30]. Default 11.
+    pub period: f32,
+    /// Direction of travel, degrees from +X towards +Z, finite. Default 30.
+    pub direction_deg: f32,
+    /// cos-2s spreading exponent, in [0, 200]; larger is narrower (25 short swell, 75 long). Default 40.
+    pub spread: f32,
+}
+
+impl Default for SwellParams {
+    fn default() -> Self {
+        Self { height: 1.0, period: 11.0, direction_deg: 30.0, spread: 40.0 }
+    }
+}
+
+/// Parameters of [`super::FftOcean`]. Units are SI except where the key names another (`_deg`, `_km`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FftOceanParams {
+    /// FFT grid side N: a power of two in [16, 2048]. Default 256.
+    pub grid: u32,
+    /// Side L of the square periodic patch, m, in [1, 100000]. Default 250.
+    pub patch_size: f32,
+    /// Wind-sea spectrum. Default `jonswap`.
+    pub spectrum: SpectrumKind,
+    /// Wind speed U10, 10 m above the sea, m/s, in [0.5, 60]. Default 10.
+    pub wind_speed: f32,
+    /// Direction the wind blows towards, degrees from +X towards +Z, in [-360, 360]. Default 0.
+    pub wind_direction_deg: f32,
+    /// Fetch (JONSWAP, TMA), km, in [0.1, 10000]. Default 100.
+    pub fetch_km: f32,
+    /// Water depth, m, in [0.1, 10000]; absent means deep water. Required by `tma`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub depth: Option<f32>,
+    /// Horizontal displacement scale λ, in [0, 2]; 0 gives rounded crests, 1 Tessendorf's choppy
+    /// sea; larger values fold crests over (foam). Default 1.
+    pub choppiness: f32,
+    /// Directional spreading. Default `mitsuyasu`.
+    pub spreading: Spreading,
+    /// JONSWAP/TMA peak enhancement γ, in [1, 10]. Default 3.3.
+    pub gamma: f32,
+    /// Phillips small-wave cutoff l, m, in [0, 100]. Default 0 (none).
+    pub small_wave_cutoff: f32,
+    /// Random seed; the same seed gives the same sea. Default 0.
+    pub seed: u32,
+    /// Number of patches of decreasing size summed to hide tiling, in [1, 4]. Default 1.
+    pub cascades: u32,
+    /// Loop period T, s, in [1, 100000]: the sea repeats exactly after T. Absent: no loop.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub loop_period: Option<f32>,
+    /// Whether to compute foam. Default true.
+    pub foam: bool,
+    /// Jacobian below which the surface foams, in [-1, 2]. Default 0.75: with the preset `ocean`
+    /// (U10 = 12 m/s, choppiness 1.2, 1 m cells) it covers about 1.4 % of the sea, near the
+    /// whitecap fraction `3.84e-6 U10^3.41` = 1.8 % observed at that wind (Monahan and
+    /// O'Muircheartaigh 1980). J depends on the grid resolution, so finer grids need a lower value.
+    pub foam_threshold: f32,
+    /// Time constant (s) over which foam fades once the crest has passed, in [0, 60]; 0 keeps no
+    /// foam from one frame to the next. Default 2.
+    pub foam_fade_s: f32,
+    /// Optional swell.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub swell: Option<SwellParams>,
+}
+
+impl Default for FftOceanParams {
+    fn default() -> Self {
+        Self {
+            grid: 256,
+            patch_size: 250.0,
+            spectrum: SpectrumKind::Jonswap,
+            wind_speed: 10.0,
+            wind_direction_deg: 0.0,
+            fetch_km: 100.0,
+            depth: None,
+            choppiness: 1.0,
+            spreading: Spreading::Mitsuyasu,
+            gamma: 3.3,
+            small_wave_cutoff: 0.0,
+            seed: 0,
+            cascades: 1,
+            loop_period: None,
+            foam: true,
+            foam_threshold: 0.75,
+            foam_fade_s: 2.0,
+            swell: None,
+        }
+    }
+}
+
+impl FftOceanParams {
+    /// Checks every field, naming keys under `key` (normally `water`).
+    pub fn validate(&self, key: &str) -> Result<()> {
+        let k = |name: &str| format!("{key}.{name}");
+        let (lo, hi) = FFT_GRID_RANGE;
+        if !(self.grid.is_power_of_two() && (lo..=hi).contains(&self.grid)) {
+            return Err(Error::out_of_range(k("grid"), self.grid, format!("powers of two in [{lo}, {hi}]")));
+        }
+        check_range(&k("patch_size"), self.patch_size, 1.0, 100_000.0)?;
+        check_range(&k("wind_speed"), self.wind_speed, 0.5, 60.0)?;
+        check_range(&k("wind_direction_deg"), self.wind_direction_deg, -360.0, 360.0)?;
+        check_range(&k("fetch_km"), self.fetch_km, 0.1, 10_000.0)?;
+        if let Some(d) = self.depth {
+            check_range(&k("depth"), d, 0.1, 10_000.0)?;
+        } else if self.spectrum == SpectrumKind::Tma {
+            return Err(Error::invalid(k("depth"), "spectrum = \"tma\" needs the water depth in metres (depth = ...)"));
+        }
+        check_range(&k("choppiness"), self.choppiness, 0.0, 2.0)?;
+        if let Spreading::Cos2s(_) = self.spreading {
+            return Err(Error::invalid(k("spreading"), format!("valid: {}", Spreading::NAMES.join(", "))));
+        }
+        check_range(&k("gamma"), self.gamma, 1.0, 10.0)?;
+        check_range(&k("small_wave_cutoff"), self.small_wave_cutoff, 0.0, 100.0)?;
+        check_count(&k("cascades"), self.cascades, 1, MAX_CASCADES)?;
+        if let Some(t) = self.loop_period {
+            check_range(&k("loop_period"), t, 1.0, 100_000.0)?;
+        }
+        check_range(&k("foam_threshold"), self.foam_threshold, -1.0, 2.0)?;
+        check_range(&k("foam_fade_s"), self.foam_fade_s, 0.0, 60.0)?;
+        if let Some(s) = &self.swell {
+            check_range(&k("swell.height"), s.height, 0.0, 30.0)?;
+            check_range(&k("swell.period"), s.period, 2.0, 30.0)?;
+            check_range(&k("swell.direction_deg"), s.direction_deg, -360.0, 360.0)?;
+            check_range(&k("swell.spread"), s.spread, 0.0, 200.0)?;
+        }
+        Ok(())
+    }
+
+    /// The directional spectrum these parameters describe (km and degrees converted to SI here).
+    pub fn spectrum(&self) -> DirectionalSpectrum {
+        let u10 = f64::from(self.wind_speed);
+        let fetch = f64::from(self.fetch_km) * 1000.0;
+        let gamma = f64::from(self.gamma);
+        let depth = self.depth.map(f64::from);
+        let wind_sea = match self.spectrum {
+            SpectrumKind::Phillips => {
+                WindSea::Phillips(Phillips { wind_speed: u10, small_wave_cutoff: f64::from(self.small_wave_cutoff) })
+            }
+            SpectrumKind::PiersonMoskowitz => WindSea::PiersonMoskowitz(PiersonMoskowitz::from_u10(u10)),
+            SpectrumKind::Jonswap => WindSea::Jonswap(Jonswap::from_wind(u10, fetch, gamma)),
+            SpectrumKind::Tma => WindSea::Tma(Tma {
+                jonswap: Jonswap::from_wind(u10, fetch, gamma),
+                depth: depth.expect("validate() requires depth for tma"),
+            }),
+        };
+        DirectionalSpectrum {
+            wind_sea,
+            spreading: self.spreading,
+            wind_direction: f64::from(self.wind_direction_deg).to_radians(),
+            wind_speed: u10,
+            dispersion: OceanDispersion { depth },
+            swell: self.swell.map(|s| {
+                Swell::new(
+                    f64::from(s.height),
+                    f64::from(s.period),
+                    f64::from(s.direction_deg).to_radians(),
+                    f64::from(s.spread),
+                )
+            }),
+        }
+    }
+}

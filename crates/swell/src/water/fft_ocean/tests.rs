@@ -1,0 +1,334 @@
+//! Checks of the FFT ocean against its oracle and against oceanography.
+
+use super::*;
+use crate::spectrum::{u19_5_from_u10, Spreading, G};
+
+fn params(grid: u32, patch: f32) -> FftOceanParams {
+    FftOceanParams { grid, patch_size: patch, ..FftOceanParams::default() }
+}
+
+fn ocean(p: &FftOceanParams) -> FftOcean {
+    FftOcean::new(p).unwrap()
+}
+
+/// Heights of the first cascade's grid.
+fn heights(o: &FftOcean) -> Vec<f64> {
+    o.cascades[0].fields[PAIR_H_DX].iter().map(|c| f64::from(c.re)).collect()
+}
+
+#[test]
+fn the_spectrum_is_hermitian_so_the_fields_are_real() {
+    let mut o = ocean(&params(32, 100.0));
+    o.advance(3.3).unwrap();
+    let c = &o.cascades[0];
+    for nx in -15..16 {
+        for nz in -15..16 {
+            assert_eq!(c.evolved(nx, nz), c.evolved(-nx, -nz).conj(), "({nx}, {nz})");
+        }
+    }
+    // The Nyquist row and column and k = 0 are empty.
+    assert_eq!(c.evolved(0, 0), Default::default());
+    assert_eq!(c.evolved(-16, 3), Default::default());
+    assert_eq!(c.evolved(5, -16), Default::default());
+}
+
+#[test]
+fn the_fft_equals_a_naive_dft_on_a_small_grid() {
+    for (grid, chop) in [(16, 1.0), (32, 0.7), (64, 1.3)] {
+        let p = FftOceanParams { choppiness: chop, ..params(grid, 60.0) };
+        let mut o = ocean(&p);
+        let t = 7.25;
+        o.advance(t).unwrap();
+        let n = grid as usize;
+        let dx = 60.0 / grid as f32;
+        let scale = o.sea_state().hs_expected;
+        for j in (0..n).step_by(3) {
+            for i in (0..n).step_by(5) {
+                let (x, z) = (i as f32 * dx, j as f32 * dx);
+                let fast = o.fields_at(x, z);
+                let slow = o.exact_fields(f64::from(x), f64::from(z), t);
+                for (q, (a, b)) in fast.iter().zip(slow).enumerate() {
+                    // Slopes are relative to 1, displacements to the wave height.
+                    let tol = if (3..8).contains(&q) { 2e-5 } else { 2e-5 * scale };
+                    assert!(
+                        (f64::from(*a) - b).abs() < tol,
+                        "{fast:?} {slow:?} grid {grid} field {q} at ({i}, {j}): fft {a} dft {b}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_sea_tiles_exactly_over_the_patch() {
+    let mut o = ocean(&params(64, 80.0));
+    o.advance(2.0).unwrap();
+    for (x, z) in [(3.3f32, 7.1f32), (41.0, 0.5), (79.0, 60.0)] {
+        let a = o.exact_displacement(f64::from(x), f64::from(z), 2.0);
+        for (sx, sz) in [(80.0, 0.0), (0.0, 80.0), (-160.0, 240.0)] {
+            let b = o.exact_displacement(f64::from(x) + sx, f64::from(z) + sz, 2.0);
+            for q in 0..3 {
+                assert!((a[q] - b[q]).abs() < 1e-9, "({x}, {z}) + ({sx}, {sz}): {a:?} vs {b:?}");
+            }
+        }
+        // The grid is periodic: the same samples, up to the rounding of x + L in f32.
+        for (a, b) in o.fields_at(x, z).iter().zip(o.fields_at(x + 80.0, z - 80.0)) {
+            assert!((a - b).abs() < 1e-5, "{a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn realised_hs_matches_the_band_limited_expectation_within_the_random_scatter() {
+    for seed in [1, 2, 3] {
+        let p = FftOceanParams { seed, ..params(128, 300.0) };
+        let o = ocean(&p);
+        let realised: f64 = heights(&o).iter().map(|h| h * h).sum::<f64>() / (128.0 * 128.0);
+        // Each pair (k, -k) contributes 2|c_k|², c_k complex Gaussian of mean square v_k =
+        // (F(k) + F(-k)) dk²/2: variance 4 v_k².
+        let dk = std::f64::consts::TAU / 300.0;
+        let mut var_of_estimate = 0.0;
+        for (nx, nz, h0, _, _) in o.cascades[0].half_spectrum() {
+            if nx == 0 && nz <= 0 || (h0.norm_sqr() == 0.0) {
+                continue;
+            }
+            let (kx, kz) = (f64::from(nx) * dk, f64::from(nz) * dk);
+            let v = (o.spectrum.density(kx, kz) + o.spectrum.density(-kx, -kz)) * dk * dk / 2.0;
+            var_of_estimate += 4.0 * v * v;
+        }
+        let expected = o.cascades[0].variance;
+        let sigma = var_of_estimate.sqrt();
+        assert!(
+            (realised - expected).abs() < 4.0 * sigma,
+            "seed {seed}: realised {realised}, expected {expected} ± {sigma}"
+        );
+        let s = o.sea_state();
+        assert!((s.hs_expected - 4.0 * expected.sqrt()).abs() < 1e-9);
+        assert!((s.hs_realised - 4.0 * realised.sqrt()).abs() < 1e-3 * s.hs_realised);
+    }
+}
+
+#[test]
+fn a_fully_developed_pierson_moskowitz_sea_has_hs_0_21_u19_5_squared_over_g() {
+    let u10 = 10.0;
+    // Peak wavelength about 90 m: a 1 km patch holds the whole spectrum but its lowest 0.5 %;
+    // 256 cells resolve waves down to 8 m, leaving out under 1 % of the variance.
+    let p = FftOceanParams {
+        spectrum: SpectrumKind::PiersonMoskowitz,
+        wind_speed: u10,
+        spreading: Spreading::Cos2,
+        ..params(256, 1000.0)
+    };
+    let o = ocean(&p);
+    let u = u19_5_from_u10(f64::from(u10));
+    let theory = 0.21 * u * u / G;
+    let s = o.sea_state();
+    assert!((s.hs_expected / theory - 1.0).abs() < 0.02, "expected {} vs 0.21 U19.5²/g = {theory}", s.hs_expected);
+    assert!((s.hs_realised / theory - 1.0).abs() < 0.08, "realised {} vs {theory}", s.hs_realised);
+}
+
+#[test]
+fn shallow_water_tma_holds_less_energy_than_deep_jonswap() {
+    let deep = ocean(&params(64, 400.0)).sea_state().hs_expected;
+    let tma = |d| {
+        ocean(&FftOceanParams { spectrum: SpectrumKind::Tma, depth: Some(d), ..params(64, 400.0) })
+            .sea_state()
+            .hs_expected
+    };
+    let (d20, d4) = (tma(20.0), tma(4.0));
+    assert!(d4 < d20 && d20 < deep, "{d4} < {d20} < {deep}");
+}
+
+#[test]
+fn heights_are_gaussian() {
+    let o = ocean(&FftOceanParams { seed: 5, ..params(256, 400.0) });
+    let h = heights(&o);
+    let n = h.len() as f64;
+    let var = h.iter().map(|v| v * v).sum::<f64>() / n;
+    let sd = var.sqrt();
+    let skew = h.iter().map(|v| (v / sd).powi(3)).sum::<f64>() / n;
+    let kurt = h.iter().map(|v| (v / sd).powi(4)).sum::<f64>() / n;
+    let within1 = h.iter().filter(|v| v.abs() < sd).count() as f64 / n;
+    let within2 = h.iter().filter(|v| v.abs() < 2.0 * sd).count() as f64 / n;
+    assert!(skew.abs() < 0.15, "skewness {skew}");
+    assert!((kurt - 3.0).abs() < 0.3, "kurtosis {kurt}");
+    assert!((within1 - 0.6827).abs() < 0.03 && (within2 - 0.9545).abs() < 0.02, "{within1} {within2}");
+}
+
+#[test]
+fn the_mean_jacobian_is_one_and_positive_choppiness_sharpens_crests() {
+    let o = ocean(&FftOceanParams { choppiness: 1.0, wind_speed: 14.0, ..params(128, 200.0) });
+    let c = &o.cascades[0];
+    let h = heights(&o);
+    let sd = (h.iter().map(|v| v * v).sum::<f64>() / h.len() as f64).sqrt();
+    let (mut sum, mut crest, mut trough) = (0.0, (0.0, 0), (0.0, 0));
+    for (idx, &hv) in h.iter().enumerate() {
+        let j = f64::from(jacobian(
+            c.fields[PAIR_HZ_DXX][idx].im,
+            c.fields[PAIR_DZZ_DXZ][idx].re,
+            c.fields[PAIR_DZZ_DXZ][idx].im,
+        ));
+        sum += j;
+        if hv > sd {
+            crest = (crest.0 + j, crest.1 + 1);
+        } else if hv < -sd {
+            trough = (trough.0 + j, trough.1 + 1);
+        }
+    }
+    let mean = sum / h.len() as f64;
+    assert!((mean - 1.0).abs() < 1e-4, "mean Jacobian {mean}");
+    let (jc, jt) = (crest.0 / crest.1 as f64, trough.0 / trough.1 as f64);
+    // Crests squeezed horizontally (J < 1, sharper), troughs stretched (J > 1, flatter).
+    assert!(jc < 0.95 && jt > 1.05, "crests {jc}, troughs {jt}");
+    // And the squeeze moves crest water towards the crest: mean h Dxx < 0.
+    let hd: f64 = h.iter().zip(&c.fields[PAIR_HZ_DXX]).map(|(h, f)| h * f64::from(f.im)).sum();
+    assert!(hd < 0.0);
+}
+
+#[test]
+fn crests_travel_downwind() {
+    for (dir, sign) in [(0.0, -1.0), (180.0, 1.0)] {
+        let p = FftOceanParams { wind_direction_deg: dir, spreading: Spreading::Cos2, ..params(64, 200.0) };
+        let mut o = ocean(&p);
+        let h0 = heights(&o);
+        let hx: Vec<f32> = o.cascades[0].fields[PAIR_DZ_HX_FOR_TESTS].iter().map(|c| c.im).collect();
+        o.advance(0.05).unwrap();
+        // For h = A cos(kx - wt) travelling +x, dh/dt dh/dx = -A² k w sin² < 0.
+        let corr: f64 = heights(&o).iter().zip(&h0).zip(&hx).map(|((a, b), s)| (a - b) * f64::from(*s)).sum();
+        assert!(corr * sign > 0.0, "wind towards {dir} deg: correlation {corr}");
+    }
+}
+
+const PAIR_DZ_HX_FOR_TESTS: usize = 1;
+
+#[test]
+fn the_sea_loops_after_its_period() {
+    let p = FftOceanParams { loop_period: Some(20.0), ..params(64, 150.0) };
+    let mut o = ocean(&p);
+    o.advance(3.0).unwrap();
+    let a = o.cascades[0].fields.clone();
+    o.advance(23.0).unwrap();
+    let scale = o.sea_state().hs_expected as f32;
+    for (fa, fb) in a.iter().zip(&o.cascades[0].fields) {
+        for (x, y) in fa.iter().zip(fb) {
+            assert!((x - y).norm() < 1e-5 * scale.max(1.0), "{x} vs {y}");
+        }
+    }
+    o.advance(13.0).unwrap();
+    assert!(o.cascades[0].fields[0].iter().zip(&a[0]).any(|(x, y)| (x - y).norm() > 1e-2));
+}
+
+#[test]
+fn a_finer_grid_keeps_the_large_waves_in_place() {
+    let coarse = ocean(&params(32, 200.0));
+    let fine = ocean(&params(128, 200.0));
+    let lookup = |o: &FftOcean, nx: i32, nz: i32| {
+        o.cascades[0].half_spectrum().find(|e| e.0 == nx && e.1 == nz).map(|e| e.2).unwrap()
+    };
+    for (nx, nz) in [(1, 0), (3, -2), (7, 7), (0, 5)] {
+        assert_eq!(lookup(&coarse, nx, nz), lookup(&fine, nx, nz));
+    }
+}
+
+#[test]
+fn one_and_two_threads_give_identical_seas_and_meshes() {
+    let p = FftOceanParams { cascades: 2, ..params(64, 100.0) };
+    let grid = GridSpec::centered(Vec2::splat(120.0), 50, 40).unwrap();
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let mut o = ocean(&p);
+            o.advance(1.5).unwrap();
+            o.advance(2.0).unwrap();
+            let mut pos = vec![Vec3::ZERO; grid.vertex_count()];
+            let mut nrm = pos.clone();
+            let mut foam = vec![0.0; grid.vertex_count()];
+            o.evaluate(&grid, 2.0, &mut pos, &mut nrm);
+            o.foam(&grid, &mut foam);
+            (o.cascades.iter().map(|c| c.fields.clone()).collect::<Vec<_>>(), pos, nrm, foam)
+        })
+    };
+    assert!(run(1) == run(2));
+}
+
+#[test]
+fn height_at_agrees_with_the_evaluated_mesh() {
+    let mut o = ocean(&FftOceanParams { choppiness: 0.8, ..params(64, 100.0) });
+    o.advance(4.0).unwrap();
+    let grid = GridSpec::centered(Vec2::splat(100.0), 64, 64).unwrap();
+    let mut pos = vec![Vec3::ZERO; grid.vertex_count()];
+    let mut nrm = pos.clone();
+    o.evaluate(&grid, 4.0, &mut pos, &mut nrm);
+    let scale = o.sea_state().hs_expected as f32;
+    for p in pos.iter().step_by(37) {
+        let h = o.height_at(p.x, p.z, 4.0);
+        assert!((h - p.y).abs() < 2e-3 * scale, "height_at {h} vs mesh {}", p.y);
+    }
+    // At another time it sums the waves directly; still the same surface as a step to that time.
+    let h_slow = o.height_at(10.0, -20.0, 5.0);
+    o.advance(5.0).unwrap();
+    let h_fast = o.height_at(10.0, -20.0, 5.0);
+    assert!((h_slow - h_fast).abs() < 0.02 * scale, "{h_slow} vs {h_fast}");
+    assert!(nrm.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+}
+
+#[test]
+fn foam_appears_on_a_rough_sea_and_not_on_a_calm_one() {
+    let rough = ocean(&FftOceanParams { wind_speed: 20.0, choppiness: 1.5, ..params(128, 200.0) });
+    let calm = ocean(&FftOceanParams { wind_speed: 3.0, choppiness: 0.5, ..params(128, 200.0) });
+    assert!(rough.sea_state().foam_coverage > 1e-4, "{}", rough.sea_state().foam_coverage);
+    assert_eq!(calm.sea_state().foam_coverage, 0.0);
+}
+
+#[test]
+fn bad_parameters_are_refused_with_the_key_and_range() {
+    let e = |p: FftOceanParams| FftOcean::new(&p).err().unwrap().to_string();
+    assert_eq!(e(params(100, 100.0)), "water.grid = 100 is outside powers of two in [16, 2048]");
+    assert!(e(FftOceanParams { spectrum: SpectrumKind::Tma, ..params(64, 100.0) }).contains("water.depth"));
+    assert!(e(FftOceanParams { choppiness: -1.0, ..params(64, 100.0) }).contains("water.choppiness = -1"));
+    assert!(e(FftOceanParams { cascades: 5, ..params(64, 100.0) }).contains("water.cascades = 5"));
+    assert!(e(FftOceanParams { wind_speed: f32::NAN, ..params(64, 100.0) }).contains("water.wind_speed"));
+}
+
+#[test]
+fn cascades_split_the_band_without_counting_a_wave_twice() {
+    let o = ocean(&FftOceanParams { cascades: 3, ..params(64, 400.0) });
+    let band = |c: &Cascade| {
+        let dk = std::f64::consts::TAU / f64::from(c.patch);
+        let ks: Vec<f64> = c
+            .half_spectrum()
+            .filter(|e| e.2.norm_sqr() > 0.0)
+            .map(|e| f64::from(e.0).hypot(f64::from(e.1)) * dk)
+            .collect();
+        (ks.iter().copied().fold(f64::INFINITY, f64::min), ks.iter().copied().fold(0.0, f64::max))
+    };
+    for pair in o.cascades.windows(2) {
+        let (a, b) = (band(&pair[0]), band(&pair[1]));
+        assert!(a.1 < b.0, "bands overlap: {a:?} and {b:?}");
+    }
+    // Three cascades of 64² hold about the variance of one 1024² patch of the same size (the
+    // handover leaves out only the corners of each square band).
+    let single = ocean(&FftOceanParams { grid: 1024, ..params(64, 400.0) }).sea_state().hs_expected;
+    let three = o.sea_state().hs_expected;
+    assert!((three / single - 1.0).abs() < 0.03, "{three} vs {single}");
+}
+
+#[test]
+fn an_aligned_mesh_reads_the_samples_the_bilinear_path_would_interpolate() {
+    let mut o = ocean(&params(32, 64.0));
+    o.advance(1.0).unwrap();
+    // Spacing 2 m = the field's; origin on sample (-3, 5).
+    let grid = GridSpec::new(Vec2::new(-6.0, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
+    assert_eq!(o.aligned_index(&grid), Some((-3, 5)));
+    let mut pos = vec![Vec3::ZERO; grid.vertex_count()];
+    let mut nrm = pos.clone();
+    o.evaluate(&grid, 1.0, &mut pos, &mut nrm);
+    for (idx, p) in pos.iter().enumerate().step_by(13) {
+        let r = grid.rest_position(idx % 41, idx / 41);
+        let f = o.fields_at(r.x, r.y);
+        assert!((p.y - f[0]).abs() < 1e-5 && (p.x - r.x - f[1]).abs() < 1e-5, "{p} vs {f:?}");
+    }
+    let off = GridSpec::new(Vec2::new(-6.3, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
+    assert_eq!(o.aligned_index(&off), None);
+}
