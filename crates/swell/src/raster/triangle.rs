@@ -56,6 +56,12 @@ pub fn setup<V: Varying>(
     cull_back: bool,
 ) -> Option<SetupTriangle<V>> {
     let w = tri.map(|v| to_window(v.position, width, height));
+    // Clipped vertices are inside the view volume, so window coordinates are within the image;
+    // a non-finite one (w = 0, or NaN from a broken model) would snap to i64::MAX and overflow the
+    // edge functions. Dropping the triangle keeps NaN out of the framebuffer.
+    if !w.iter().all(|p| p.0.is_finite() && p.1.is_finite() && p.2.is_finite() && p.3.is_finite()) {
+        return None;
+    }
     let snap = |c: f32| (c * ONE as f32).round() as i64;
     let mut x = w.map(|p| snap(p.0));
     let mut y = w.map(|p| snap(p.1));
