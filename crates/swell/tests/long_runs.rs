@@ -1,8 +1,8 @@
 //! Long runs: the spring mesh (the one time-stepped model in swell so far) runs many steps without
 //! NaN, drift or growing energy; closed-form models stay bounded at large times.
 //!
-//! CI runs 10 000 steps. The 100 000-step run is `#[ignore]`d (about a minute with optimisation);
-//! run it with `cargo test -p swell --release --test long_runs -- --ignored`.
+//! CI runs 10 000 steps. The 100 000-step run is `#[ignore]`d (the test profile is optimised, opt-level 2);
+//! run it with `cargo test -p swell --test long_runs -- --ignored`.
 
 use glam::Vec2;
 use swell::math::GridSpec;
