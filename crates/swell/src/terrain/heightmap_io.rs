@@ -146,7 +146,7 @@ pub fn read_grey_png_from<R: std::io::BufRead + std::io::Seek>(
     let got = read_up_to(&mut input, &mut head).map_err(|e| Error::io(path, e))?;
     if let Some((w, h)) = png_header_size(&head[..got]) {
         // Two bytes of grey and two of alpha per pixel at most.
-        let bytes = 4 * w as u64 * h as u64;
+        let bytes = (4 * w as u64).saturating_mul(h as u64);
         if w > MAX_TERRAIN_SIZE || h > MAX_TERRAIN_SIZE || bytes > MAX_HEIGHTMAP_BYTES {
             return Err(img_err(format!(
                 "header claims {w} x {h} pixels, over the heightmap limit of {MAX_TERRAIN_SIZE} x \
@@ -284,6 +284,18 @@ mod tests {
             }
         }
         !c
+    }
+
+    #[test]
+    fn headers_claiming_the_largest_sizes_are_refused_without_overflow() {
+        // Found by the heightmap_png fuzzer: 0xFFFFFFFF x 0xFFFFFFFF overflowed the byte estimate.
+        let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+        png.extend([0xFF; 8]);
+        png.extend([8, 0, 0, 0, 0, 0, 0, 0, 0]);
+        let e = decode_grey_png(&png, Path::new("max.png")).unwrap_err().to_string();
+        assert!(e.contains("4294967295 x 4294967295") && e.contains("MAX_TERRAIN_SIZE"), "{e}");
+        assert_eq!(png_header_size(&png[..23]), None);
+        assert!(decode_grey_png(b"", Path::new("empty.png")).is_err());
     }
 
     #[test]
