@@ -147,6 +147,8 @@ fn bad_command_lines_are_refused_by_name_without_output() {
         (&["render", "--preset", "no-such-preset", "--out", p], "no-such-preset"),
         (&["render", "--scene", "/dev/null/x.toml", "--out", p], "/dev/null/x.toml"),
         (&["render", "--scene", "/nonexistent/scene.toml", "--out", p], "/nonexistent/scene.toml"),
+        // An endless file is read only up to the scene-size limit.
+        (&["render", "--scene", "/dev/zero", "--out", p], "MAX_SCENE_BYTES"),
     ];
     let mut failures = Vec::new();
     for (args, expect) in cases {
