@@ -160,7 +160,7 @@ mod tests {
         let before = e.scene().clone();
         set_first_amplitude(&mut e.draft, -2.0);
         let err = e.apply().unwrap_err().to_string();
-        assert_eq!(err, "water.waves[0].amplitude = -2 is outside [0, inf)");
+        assert_eq!(err, "water.waves[0].amplitude = -2 is outside [0, 100000]");
         assert_eq!(e.error(), Some(err.as_str()));
         assert_eq!(e.scene(), &before);
         assert_eq!(first_amplitude(&e.draft), -2.0, "the draft keeps what the user typed");

@@ -51,6 +51,7 @@
 
 pub mod error;
 pub mod export;
+pub mod limits;
 pub mod math;
 pub mod mesh;
 pub mod raster;

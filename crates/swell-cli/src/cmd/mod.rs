@@ -34,7 +34,21 @@ pub fn load_scene(source: &SceneSource) -> Result<Scene> {
     match (&source.preset, &source.scene) {
         (Some(name), _) => preset(name),
         (None, Some(path)) => {
-            let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+            // Read at most one byte past the limit, so a huge file (or /dev/zero) is refused
+            // without being read whole; Scene::from_toml then names the limit.
+            let mut bytes = Vec::new();
+            let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+            std::io::Read::read_to_end(&mut std::io::Read::take(file, swell::limits::MAX_SCENE_BYTES + 1), &mut bytes)
+                .map_err(|e| Error::io(path, e))?;
+            if bytes.len() as u64 > swell::limits::MAX_SCENE_BYTES {
+                return Err(Error::Parse {
+                    path: path.display().to_string(),
+                    message: format!(
+                        "over the scene-file limit of {} bytes (MAX_SCENE_BYTES)",
+                        swell::limits::MAX_SCENE_BYTES
+                    ),
+                });
+            }
             let text = String::from_utf8(bytes).map_err(|_| Error::Parse {
                 path: path.display().to_string(),
                 message: "not UTF-8 text (a scene file is TOML)".into(),

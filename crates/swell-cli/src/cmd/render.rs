@@ -17,8 +17,8 @@ use swell::{Error, Result};
 use super::{load_scene, thread_pool};
 use crate::args::RenderArgs;
 
-/// Most frames one animation may have.
-const MAX_FRAMES: u32 = 10_000;
+/// Most frames one animation may have: see `swell::limits`.
+use swell::limits::MAX_FRAMES;
 
 enum Output {
     Png,

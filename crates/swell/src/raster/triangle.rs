@@ -82,6 +82,11 @@ pub fn setup<V: Varying>(
     cull_back: bool,
 ) -> Option<SetupTriangle<V>> {
     let w = tri.map(|v| to_window(v.position, width, height));
+    // A non-finite vertex (w = 0, or NaN from a broken model) would cast to an arbitrary fixed-point
+    // coordinate; dropping the triangle keeps NaN out of the framebuffer.
+    if !w.iter().all(|v| v.z.is_finite() && v.inv_w.is_finite()) {
+        return None;
+    }
     setup_window(&w, [tri[0].varying, tri[1].varying, tri[2].varying], primitive, width, height, cull_back)
 }
 

@@ -52,6 +52,8 @@ struct SceneFile {
 impl Scene {
     /// Parses and validates a scene; `source` (a path or `preset NAME`) is named in errors.
     pub fn from_toml(text: &str, source: &str) -> Result<Self> {
+        // Size and nesting are checked before parsing, so hostile text cannot exhaust the stack.
+        crate::limits::check_scene_text(text, source)?;
         let mut table: toml::Table = toml::from_str(text)
             .map_err(|e| Error::Parse { path: source.into(), message: e.to_string().trim_end().into() })?;
         let water = match table.remove("water") {
@@ -138,6 +140,11 @@ impl Scene {
         if let Some(t) = &self.terrain {
             t.validate()?;
         }
+        // Every size is in range on its own; their sum must also fit before anything is allocated.
+        crate::limits::check_memory(
+            "scene (water grid + terrain + framebuffer)",
+            crate::limits::estimate_world_bytes(self),
+        )?;
         Ok(())
     }
 

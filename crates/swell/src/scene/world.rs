@@ -18,6 +18,21 @@ pub struct WaterBody {
     pub texture: Option<Texture>,
 }
 
+/// Refuses a mesh holding NaN or infinity, so it never reaches the rasterizer or a file. Validation
+/// bounds every parameter, so this only fires on combinations the bounds do not foresee.
+fn check_finite_mesh(mesh: &SurfaceMesh, t: f64) -> Result<()> {
+    use rayon::prelude::*;
+    let finite = |v: &glam::Vec3| v.is_finite();
+    if mesh.positions.par_iter().all(finite) && mesh.normals.par_iter().all(finite) {
+        Ok(())
+    } else {
+        Err(crate::Error::Unstable(format!(
+            "the water model produced non-finite positions or normals at time {t} s; \
+             reduce the wave amplitudes, wavelengths or speeds in [water]"
+        )))
+    }
+}
+
 /// A [`Scene`] with its models built; [`World::update`] moves it to a time.
 pub struct World {
     /// The scene it was built from.
@@ -61,6 +76,7 @@ impl World {
         if let Some(w) = &mut self.water {
             w.model.advance(t)?;
             w.mesh.displace(w.model.as_ref(), t);
+            check_finite_mesh(&w.mesh, t)?;
         }
         self.time = t;
         Ok(())

@@ -113,9 +113,49 @@ pub fn read_sidecar(png: &Path) -> Result<Option<HeightmapSidecar>> {
 /// Refuses, before decoding any pixel, images wider or taller than [`MAX_TERRAIN_SIZE`] or whose
 /// decoded size would pass [`MAX_HEIGHTMAP_BYTES`]; refuses colour images.
 pub fn read_grey_png(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
-    let img_err = |message: String| Error::Image { path: path.into(), message };
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-    let mut reader = ImageReader::new(BufReader::new(file));
+    read_grey_png_from(BufReader::new(file), path)
+}
+
+/// [`read_grey_png`] from bytes in memory; `name` is what errors call them.
+pub fn decode_grey_png(bytes: &[u8], name: &Path) -> Result<(u32, u32, Vec<f32>)> {
+    read_grey_png_from(std::io::Cursor::new(bytes), name)
+}
+
+/// Width and height a PNG's header claims, if `head` (its first 24 bytes or more) is a PNG header.
+///
+/// Read by hand so that a refusal can say what the file claimed; the codec only says that a limit
+/// was exceeded.
+pub fn png_header_size(head: &[u8]) -> Option<(u32, u32)> {
+    const SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
+    if head.len() < 24 || &head[..8] != SIGNATURE || &head[12..16] != b"IHDR" {
+        return None;
+    }
+    let be = |b: &[u8]| u32::from_be_bytes([b[0], b[1], b[2], b[3]]);
+    Some((be(&head[16..20]), be(&head[20..24])))
+}
+
+/// [`read_grey_png`] from any seekable reader; `name` is what errors call the data.
+pub fn read_grey_png_from<R: std::io::BufRead + std::io::Seek>(
+    mut input: R,
+    name: &Path,
+) -> Result<(u32, u32, Vec<f32>)> {
+    let path = name;
+    let img_err = |message: String| Error::Image { path: path.into(), message };
+    let mut head = [0u8; 24];
+    let got = read_up_to(&mut input, &mut head).map_err(|e| Error::io(path, e))?;
+    if let Some((w, h)) = png_header_size(&head[..got]) {
+        // Two bytes of grey and two of alpha per pixel at most.
+        let bytes = (4 * w as u64).saturating_mul(h as u64);
+        if w > MAX_TERRAIN_SIZE || h > MAX_TERRAIN_SIZE || bytes > MAX_HEIGHTMAP_BYTES {
+            return Err(img_err(format!(
+                "header claims {w} x {h} pixels, over the heightmap limit of {MAX_TERRAIN_SIZE} x \
+                 {MAX_TERRAIN_SIZE} pixels (MAX_TERRAIN_SIZE); refused before decoding"
+            )));
+        }
+    }
+    input.seek(std::io::SeekFrom::Start(0)).map_err(|e| Error::io(path, e))?;
+    let mut reader = ImageReader::new(input);
     reader.set_format(ImageFormat::Png);
     let mut limits = Limits::default();
     limits.max_image_width = Some(MAX_TERRAIN_SIZE);
@@ -145,6 +185,20 @@ pub fn read_grey_png(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
         _ => image.to_luma16().pixels().map(|p| p.0[0] as f32 / 65535.0).collect(),
     };
     Ok((w, h, grey))
+}
+
+/// Fills as much of `buf` as `input` holds, stopping early only at its end.
+fn read_up_to(input: &mut impl std::io::Read, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut n = 0;
+    while n < buf.len() {
+        match input.read(&mut buf[n..]) {
+            Ok(0) => break,
+            Ok(k) => n += k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(n)
 }
 
 /// Where a loaded heightmap's mapping comes from: explicit values win over the sidecar's.
@@ -230,6 +284,18 @@ mod tests {
             }
         }
         !c
+    }
+
+    #[test]
+    fn headers_claiming_the_largest_sizes_are_refused_without_overflow() {
+        // Found by the heightmap_png fuzzer: 0xFFFFFFFF x 0xFFFFFFFF overflowed the byte estimate.
+        let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+        png.extend([0xFF; 8]);
+        png.extend([8, 0, 0, 0, 0, 0, 0, 0, 0]);
+        let e = decode_grey_png(&png, Path::new("max.png")).unwrap_err().to_string();
+        assert!(e.contains("4294967295 x 4294967295") && e.contains("MAX_TERRAIN_SIZE"), "{e}");
+        assert_eq!(png_header_size(&png[..23]), None);
+        assert!(decode_grey_png(b"", Path::new("empty.png")).is_err());
     }
 
     #[test]

@@ -19,8 +19,8 @@ pub use bottom::{flat, slope, FlatParams, SlopeParams};
 pub use diamond_square::{check_diamond_square_size, diamond_square, DiamondSquareParams, MAX_AMPLITUDE};
 pub use height_field::{HeightField, MAX_TERRAIN_SIZE};
 pub use heightmap_io::{
-    load_heightmap, read_grey_png, read_sidecar, sidecar_path, write_heightmap, HeightmapOverrides, HeightmapSidecar,
-    MAX_HEIGHTMAP_BYTES,
+    decode_grey_png, load_heightmap, png_header_size, read_grey_png, read_grey_png_from, read_sidecar, sidecar_path,
+    write_heightmap, HeightmapOverrides, HeightmapSidecar, MAX_HEIGHTMAP_BYTES,
 };
 pub use hills::{hills, HillsParams, MAX_HILLS};
 pub use lattice_random::{lattice_random, LatticeRandom};

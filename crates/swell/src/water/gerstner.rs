@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
-use crate::error::{check_non_negative, check_positive, check_range, Error, Result};
+use crate::error::{check_range, Error, Result};
 use crate::math::GridSpec;
 
 /// Most waves one [`Gerstner`] model sums (paper 000 uses up to 12; 64 leaves room for rich seas
@@ -51,9 +51,12 @@ pub struct GerstnerWave {
 impl GerstnerWave {
     /// Checks every field, naming it under `key` (e.g. `water.waves[2]`).
     pub fn validate(&self, key: &str) -> Result<()> {
-        check_non_negative(&format!("{key}.amplitude"), self.amplitude)?;
-        check_positive(&format!("{key}.wavelength"), self.wavelength)?;
-        check_non_negative(&format!("{key}.speed"), self.speed)?;
+        // Upper bounds from `limits`: far past any real wave, low enough that sums of 64 waves and
+        // the phase `k x - w t` stay finite in f32.
+        use crate::limits::{MAX_WAVE_LENGTH_M, MAX_WAVE_SPEED};
+        check_range(&format!("{key}.amplitude"), self.amplitude, 0.0, MAX_WAVE_LENGTH_M)?;
+        check_range(&format!("{key}.wavelength"), self.wavelength, 1e-6, MAX_WAVE_LENGTH_M)?;
+        check_range(&format!("{key}.speed"), self.speed, 0.0, MAX_WAVE_SPEED)?;
         check_range(&format!("{key}.steepness"), self.steepness, 0.0, 1.0)?;
         let len = self.direction.length();
         if !(len.is_finite() && len > 1e-6) {

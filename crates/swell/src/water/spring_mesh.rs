@@ -164,6 +164,9 @@ impl SpringMeshParams {
                 ),
             ));
         }
+        // The warm-up is simulated in one advance, which is capped at MAX_STEPS_PER_ADVANCE steps.
+        let max_warm_up = MAX_STEPS_PER_ADVANCE as f32 * self.time_step;
+        check_range(&format!("{key}.warm_up"), self.warm_up, 0.0, max_warm_up)?;
         if let Some(d) = &self.drops {
             check_positive(&format!("{key}.drops.interval"), d.interval)?;
             check_positive(&format!("{key}.drops.radius"), d.radius)?;

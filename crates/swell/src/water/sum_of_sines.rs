@@ -9,7 +9,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
-use crate::error::{check_non_negative, check_positive, Error, Result};
+use crate::error::{check_range, Error, Result};
 use crate::math::GridSpec;
 
 /// Most waves one [`SumOfSines`] sums.
@@ -32,9 +32,12 @@ pub struct SineWave {
 impl SineWave {
     /// Checks every field, naming it under `key` (e.g. `water.sines[0]`).
     pub fn validate(&self, key: &str) -> Result<()> {
-        check_non_negative(&format!("{key}.amplitude"), self.amplitude)?;
-        check_positive(&format!("{key}.wavelength"), self.wavelength)?;
-        check_non_negative(&format!("{key}.speed"), self.speed)?;
+        // Upper bounds from `limits`: far past any real wave, low enough that sums of 64 waves and
+        // the phase `k x - w t` stay finite in f32.
+        use crate::limits::{MAX_WAVE_LENGTH_M, MAX_WAVE_SPEED};
+        check_range(&format!("{key}.amplitude"), self.amplitude, 0.0, MAX_WAVE_LENGTH_M)?;
+        check_range(&format!("{key}.wavelength"), self.wavelength, 1e-6, MAX_WAVE_LENGTH_M)?;
+        check_range(&format!("{key}.speed"), self.speed, 0.0, MAX_WAVE_SPEED)?;
         let len = self.direction.length();
         if !(len.is_finite() && len > 1e-6) {
             return Err(Error::invalid(

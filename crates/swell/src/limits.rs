@@ -1,0 +1,260 @@
+//! Resource limits: the one place that says how large anything a user asks for may be, and how much
+//! memory it will take, so that oversized requests fail with a clear error *before* allocating.
+//!
+//! Every size a user gives has two checks:
+//!
+//! 1. a per-key limit (image side, grid cells, terrain side, frames, waves...), checked where the key
+//!    is validated and named in its error (`render.width = 20000 is outside [1, 16384]`);
+//! 2. a whole-job memory estimate ([`estimate_world_bytes`], [`estimate_frame_bytes`]) compared with
+//!    [`MEMORY_BUDGET_BYTES`] by [`check_memory`], because keys that are each within their limit can
+//!    still add up to more than a machine holds (a 4096² water grid *and* a 4097² terrain *and* a
+//!    16384² image).
+//!
+//! The estimates count the buffers swell itself allocates, per element, rounded up; they are meant
+//! to be within a factor of 1.5 of the real peak, which is enough to refuse a job that would exhaust
+//! memory while never refusing one that fits comfortably.
+//!
+//! The per-key limits live beside the keys they limit and are re-exported here so the whole list
+//! can be read in one place (`docs/ROBUSTNESS.md` gives the reasons).
+
+use crate::error::{Error, Result};
+use crate::scene::{Scene, TerrainGenerator, DEFAULT_TERRAIN_SIZE};
+
+pub use crate::math::MAX_GRID_CELLS;
+pub use crate::scene::{MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_THREADS};
+pub use crate::terrain::{MAX_HEIGHTMAP_BYTES, MAX_TERRAIN_SIZE};
+pub use crate::water::{
+    MAX_AIRY_WAVES, MAX_GERSTNER_WAVES, MAX_NOISE_OCTAVES, MAX_SINE_WAVES, MAX_SPRING_CELLS, MAX_STEEP_SINE_WAVES,
+    MAX_STEPS_PER_ADVANCE, MAX_TESSENDORF_WAVES,
+};
+
+/// Most memory (bytes) one job may plan to use: 4 GiB.
+///
+/// Chosen so that any accepted scene runs on an 8 GiB laptop with room for the operating system,
+/// while every realistic scene (a 1024² grid at 4K is about 0.3 GiB) is far below it.
+pub const MEMORY_BUDGET_BYTES: u64 = 4 << 30;
+
+/// Most frames one animation may have (`swell render --frames`): 10 000, i.e. over 5 minutes at
+/// 30 fps, which already takes hours to render and gigabytes to store.
+pub const MAX_FRAMES: u32 = 10_000;
+
+/// Most bytes of scene-file text read: 16 MiB. A hand-written scene is a few kilobytes; the largest
+/// legitimate one (64 waves per list, 16 lights) is under 100 KiB.
+pub const MAX_SCENE_BYTES: u64 = 16 << 20;
+
+/// Deepest nesting of arrays and inline tables accepted in a scene file: 64.
+///
+/// The deepest legitimate key (`[[water.waves]]` with a `direction` array) nests 3 levels. The TOML
+/// parser recurses once per level; checking the depth before parsing means a hostile file of
+/// 100 000 `[` cannot overflow the stack, whatever the parser's own guards.
+pub const MAX_NESTING_DEPTH: usize = 64;
+
+/// Largest wave amplitude or wavelength, metres: 100 km, far past any real wave (the longest ocean
+/// swells are about 1 km; tsunamis about 200 km but not modelled here), small enough that sums of
+/// many waves stay finite in f32.
+pub const MAX_WAVE_LENGTH_M: f32 = 1.0e5;
+
+/// Largest wave speed, m/s: 1000 (a 100 km deep-water wave travels about 400 m/s).
+pub const MAX_WAVE_SPEED: f32 = 1.0e3;
+
+/// Bytes per water vertex: the [`crate::mesh::SurfaceMesh`] buffers (position 12, normal 12, uv 8,
+/// foam 4) plus the renderer's transformed copy (clip position 16, colour 12) = 64, rounded up.
+pub const WATER_BYTES_PER_VERTEX: u64 = 64;
+
+/// Bytes per grid cell for triangle indices: 2 triangles of 3 `u32`.
+pub const BYTES_PER_CELL: u64 = 24;
+
+/// Bytes per terrain vertex: the height field (4), its mesh and the renderer's copy as for water
+/// (64), and the water depth measured under it (4), rounded up to 80.
+pub const TERRAIN_BYTES_PER_VERTEX: u64 = 80;
+
+/// Bytes per image pixel: linear colour (12) and depth (4) in the framebuffer, and the encoded RGBA8
+/// copy (4).
+pub const BYTES_PER_PIXEL: u64 = 20;
+
+/// Bytes of the framebuffer and encoded image for a `width` x `height` frame.
+pub fn estimate_frame_bytes(width: u32, height: u32) -> u64 {
+    (width as u64 * height as u64).saturating_mul(BYTES_PER_PIXEL)
+}
+
+/// Bytes of a water or terrain grid of `cells_x` x `cells_z` cells with `per_vertex` bytes per
+/// vertex.
+pub fn estimate_grid_bytes(cells_x: u32, cells_z: u32, per_vertex: u64) -> u64 {
+    // Saturating: the estimate may be asked about unvalidated sizes, and must not wrap to small.
+    let verts = (cells_x as u64 + 1).saturating_mul(cells_z as u64 + 1);
+    verts.saturating_mul(per_vertex).saturating_add((cells_x as u64 * cells_z as u64).saturating_mul(BYTES_PER_CELL))
+}
+
+/// Estimated peak bytes of building and rendering `scene` one frame at a time: water grid, terrain
+/// grid (a heightmap counted at the largest size it may have, since its size is only known from the
+/// file), and framebuffer.
+///
+/// Does not read any file; call it before anything is allocated.
+pub fn estimate_world_bytes(scene: &Scene) -> u64 {
+    let mut bytes = estimate_frame_bytes(scene.render.width, scene.render.height);
+    if let Some(w) = &scene.water {
+        bytes =
+            bytes.saturating_add(estimate_grid_bytes(w.surface.cells[0], w.surface.cells[1], WATER_BYTES_PER_VERTEX));
+    }
+    if let Some(t) = &scene.terrain {
+        let side = match t.generator {
+            // Known only once the header is read; that read checks the real size again.
+            TerrainGenerator::Heightmap(_) => 0,
+            _ => t.size.unwrap_or(DEFAULT_TERRAIN_SIZE),
+        };
+        if side >= 2 {
+            bytes = bytes.saturating_add(estimate_grid_bytes(side - 1, side - 1, TERRAIN_BYTES_PER_VERTEX));
+        }
+    }
+    bytes
+}
+
+/// Refuses a job whose estimate `bytes` passes [`MEMORY_BUDGET_BYTES`]; `what` says what was
+/// estimated (e.g. `scene (water grid + terrain + framebuffer)`).
+pub fn check_memory(what: &str, bytes: u64) -> Result<()> {
+    if bytes <= MEMORY_BUDGET_BYTES {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            what,
+            format!(
+                "needs about {} MiB, over the memory budget of {} MiB (MEMORY_BUDGET_BYTES); \
+                 reduce water.cells, terrain.size or the image size",
+                bytes >> 20,
+                MEMORY_BUDGET_BYTES >> 20
+            ),
+        ))
+    }
+}
+
+/// Refuses scene text longer than [`MAX_SCENE_BYTES`] or nesting arrays / inline tables deeper than
+/// [`MAX_NESTING_DEPTH`], before the TOML parser sees it. Brackets inside strings and comments are
+/// skipped, so legitimate text is never refused for the characters it contains.
+pub fn check_scene_text(text: &str, source: &str) -> Result<()> {
+    if text.len() as u64 > MAX_SCENE_BYTES {
+        return Err(Error::Parse {
+            path: source.into(),
+            message: format!(
+                "{} bytes is over the scene-file limit of {MAX_SCENE_BYTES} bytes (MAX_SCENE_BYTES)",
+                text.len()
+            ),
+        });
+    }
+    let depth = nesting_depth(text);
+    if depth > MAX_NESTING_DEPTH {
+        return Err(Error::Parse {
+            path: source.into(),
+            message: format!(
+                "arrays or inline tables nested {depth}+ deep, over the limit of {MAX_NESTING_DEPTH} \
+                 (MAX_NESTING_DEPTH)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Deepest `[` / `{` nesting in TOML `text`, outside strings and comments, stopping early once past
+/// [`MAX_NESTING_DEPTH`]. Table headers (`[a]`, `[[a]]`) count 1 or 2, never more, so they are
+/// harmless.
+fn nesting_depth(text: &str) -> usize {
+    #[derive(PartialEq)]
+    enum State {
+        Code,
+        Comment,
+        Basic,
+        Literal,
+        MultiBasic,
+        MultiLiteral,
+    }
+    let b = text.as_bytes();
+    let (mut state, mut depth, mut max, mut i) = (State::Code, 0usize, 0usize, 0usize);
+    while i < b.len() {
+        let c = b[i];
+        match state {
+            State::Code => match c {
+                b'#' => state = State::Comment,
+                b'"' if b[i..].starts_with(b"\"\"\"") => {
+                    state = State::MultiBasic;
+                    i += 2;
+                }
+                b'\'' if b[i..].starts_with(b"'''") => {
+                    state = State::MultiLiteral;
+                    i += 2;
+                }
+                b'"' => state = State::Basic,
+                b'\'' => state = State::Literal,
+                b'[' | b'{' => {
+                    depth += 1;
+                    max = max.max(depth);
+                    if max > MAX_NESTING_DEPTH {
+                        return max;
+                    }
+                }
+                b']' | b'}' => depth = depth.saturating_sub(1),
+                _ => {}
+            },
+            State::Comment => {
+                if c == b'\n' {
+                    state = State::Code;
+                }
+            }
+            State::Basic => match c {
+                b'\\' => i += 1,
+                b'"' | b'\n' => state = State::Code,
+                _ => {}
+            },
+            State::Literal => {
+                if c == b'\'' || c == b'\n' {
+                    state = State::Code;
+                }
+            }
+            State::MultiBasic => {
+                if c == b'\\' {
+                    i += 1;
+                } else if b[i..].starts_with(b"\"\"\"") {
+                    state = State::Code;
+                    i += 2;
+                }
+            }
+            State::MultiLiteral => {
+                if b[i..].starts_with(b"'''") {
+                    state = State::Code;
+                    i += 2;
+                }
+            }
+        }
+        i += 1;
+    }
+    max
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nesting_counts_brackets_outside_strings_and_comments() {
+        assert_eq!(nesting_depth("a = [[1], [2, [3]]]\n"), 3);
+        assert_eq!(nesting_depth("[[water.waves]]\nd = [1.0, 0.0]\n"), 2);
+        assert_eq!(nesting_depth("s = \"[[[[[[\" # [[[[[[[\nt = '[[[['\nu = \"\"\"[[[\n[[[\"\"\"\n"), 0);
+        assert_eq!(nesting_depth("s = \"\\\"[[\"\n"), 0);
+        let deep = format!("a = {}1{}\n", "[".repeat(100_000), "]".repeat(100_000));
+        assert_eq!(nesting_depth(&deep), MAX_NESTING_DEPTH + 1);
+        let e = check_scene_text(&deep, "deep.toml").unwrap_err().to_string();
+        assert!(e.starts_with("deep.toml: arrays or inline tables nested") && e.contains("64"), "{e}");
+    }
+
+    #[test]
+    fn estimates_grow_with_every_size_and_the_budget_refuses_the_largest() {
+        let small = estimate_grid_bytes(256, 256, WATER_BYTES_PER_VERTEX);
+        assert!(small > 257 * 257 * 36 && small < 10 << 20);
+        let big = estimate_grid_bytes(MAX_GRID_CELLS, MAX_GRID_CELLS, WATER_BYTES_PER_VERTEX);
+        assert!(big > 1 << 30);
+        // The largest image alone passes the budget: each key is in range, the sum is not.
+        let frame = estimate_frame_bytes(MAX_IMAGE_SIDE, MAX_IMAGE_SIDE);
+        assert!(check_memory("x", frame).is_err());
+        assert!(check_memory("x", estimate_frame_bytes(3840, 2160) + small).is_ok());
+        let e = check_memory("scene", big + frame).unwrap_err().to_string();
+        assert!(e.contains("memory budget of 4096 MiB"), "{e}");
+    }
+}
