@@ -1,6 +1,6 @@
 //! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer:
-//! [`sky_pass`] clears to the sky, [`water_pass`] draws the water surface, [`overlay_pass`] draws
-//! the wireframe and normals when asked for.
+//! [`sky_pass`] clears the depth, [`water_pass`] draws the water surface, [`sky_pass`] fills what
+//! is left with the sky, [`overlay_pass`] draws the wireframe and normals when asked for.
 
 mod mesh_pass;
 mod overlay_pass;
