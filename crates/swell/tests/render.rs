@@ -40,3 +40,19 @@ fn every_shading_model_is_bit_identical_on_one_two_and_three_threads() {
         }
     }
 }
+
+#[test]
+fn a_reused_renderer_draws_the_same_frame_as_a_fresh_one() {
+    let mut scene = preset("sea").unwrap();
+    scene.render.width = 96;
+    scene.render.height = 64;
+    scene.water.as_mut().unwrap().surface.cells = [32, 32];
+    let mut world = World::new(scene).unwrap();
+    let mut reused = Renderer::new();
+    world.update(0.0).unwrap();
+    reused.render(&world);
+    world.update(3.0).unwrap();
+    let again = reused.render(&world).color.clone();
+    let fresh = Renderer::new().render(&world).color.clone();
+    assert!(again == fresh, "state from the previous frame leaked into the next");
+}

@@ -64,7 +64,7 @@ impl Renderer {
             },
             clip_from_world: scene.camera.clip_from_world(width as f32 / height as f32),
         };
-        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
+        sky_pass::clear_depth(fb);
         if let Some(water) = &world.water {
             water_pass::draw(
                 fb,
@@ -75,6 +75,8 @@ impl Renderer {
                 &mut self.water_scratch,
             );
         }
+        // After every geometry pass: the sky fills only what they left at the far plane.
+        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
         if let Some(water) = &world.water {
             overlay_pass::draw(fb, &frame, &water.mesh, scene.render.wireframe, scene.render.normals);
         }
