@@ -54,6 +54,19 @@ impl Framebuffer {
         });
     }
 
+    /// Sets the colour of every pixel whose depth is still the far plane (1) to `background(x,
+    /// y)`, rows in parallel: drawing the background after the geometry shades only what shows.
+    pub fn fill_background(&mut self, background: impl Fn(u32, u32) -> Vec3 + Sync) {
+        let w = self.width as usize;
+        self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().for_each(|(y, (row, depth))| {
+            for (x, (c, &d)) in row.iter_mut().zip(depth).enumerate() {
+                if d >= 1.0 {
+                    *c = background(x as u32, y as u32);
+                }
+            }
+        });
+    }
+
     /// Encodes to RGBA8 (alpha 255): colour times `exposure`, then the sRGB curve, or the power
     /// law `c^(1/gamma)` when `gamma` is given. `out` is resized to `4 * width * height`.
     pub fn encode_rgba8(&self, exposure: f32, gamma: Option<f32>, out: &mut Vec<u8>) {

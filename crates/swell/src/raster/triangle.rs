@@ -195,34 +195,37 @@ impl<V: Varying> SetupTriangle<V> {
         if y_from > y_to {
             return;
         }
-        // Edge k is opposite vertex k: e0 = v1 -> v2, e1 = v2 -> v0, e2 = v0 -> v1.
+        // Edge k is opposite vertex k: e0 = v1 -> v2, e1 = v2 -> v0, e2 = v0 -> v1. Written out
+        // per edge rather than with array `map`, which the compiler does not always inline here.
         let (x, y) = (&self.x, &self.y);
-        let edges = [(1, 2), (2, 0), (0, 1)].map(|(a, b)| {
+        let px0 = self.min_x as i64 * ONE as i64 + HALF as i64;
+        let py0 = y_from as i64 * ONE as i64 + HALF as i64;
+        let edge = |a: usize, b: usize| {
             let (dx, dy) = ((x[b] - x[a]) as i64, (y[b] - y[a]) as i64);
             // Pixels exactly on an edge count only for top and left edges.
             let bias = if is_top_left(dx, dy) { 0 } else { -1 };
-            (a, dx, dy, bias)
-        });
-        let px0 = self.min_x as i64 * ONE as i64 + HALF as i64;
-        let step = edges.map(|(_, _, dy, _)| -dy * ONE as i64);
-        let step_row = edges.map(|(_, dx, _, _)| dx * ONE as i64);
-        let pyf = y_from as i64 * ONE as i64 + HALF as i64;
-        let mut row_e = edges.map(|(a, dx, dy, bias)| dx * (pyf - y[a] as i64) - dy * (px0 - x[a] as i64) + bias);
+            let start = dx * (py0 - y[a] as i64) - dy * (px0 - x[a] as i64) + bias;
+            (start, -dy * ONE as i64, dx * ONE as i64, bias)
+        };
+        let (mut r0, sx0, sy0, b0) = edge(1, 2);
+        let (mut r1, sx1, sy1, b1) = edge(2, 0);
+        let (mut r2, sx2, sy2, b2) = edge(0, 1);
+        let inv = self.inv_area;
         for py in y_from..=y_to {
-            let mut e = row_e;
+            let (mut e0, mut e1, mut e2) = (r0, r1, r2);
             for px in self.min_x..=self.max_x {
-                if (e[0] | e[1] | e[2]) >= 0 {
+                if (e0 | e1 | e2) >= 0 {
                     // Undo the bias before weighting; it only decides ties.
-                    let linear = [0, 1, 2].map(|k| (e[k] - edges[k].3) as f32 * self.inv_area);
+                    let linear = [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
                     visit(Coverage { x: px, y: py, linear });
                 }
-                for k in 0..3 {
-                    e[k] += step[k];
-                }
+                e0 += sx0;
+                e1 += sx1;
+                e2 += sx2;
             }
-            for k in 0..3 {
-                row_e[k] += step_row[k];
-            }
+            r0 += sy0;
+            r1 += sy1;
+            r2 += sy2;
         }
     }
 }

@@ -116,7 +116,7 @@ impl MeshRenderer {
                 let positions = &mesh.positions;
                 self.faces.resize(mesh.indices.len() / 3, Vec3::ZERO);
                 self.faces.par_iter_mut().zip(mesh.indices.par_chunks_exact(3)).for_each(|(c, t)| {
-                    let [a, b, d] = [0, 1, 2].map(|k| positions[t[k] as usize]);
+                    let (a, b, d) = (positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]);
                     *c = light.shade(to_light, (b - a).cross(d - a).normalize_or_zero());
                 });
                 let faces = &self.faces;

@@ -1,6 +1,6 @@
 //! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer:
-//! [`sky_pass`] clears to the sky, [`water_pass`] draws the water surface, [`overlay_pass`] draws
-//! the wireframe and normals when asked for.
+//! [`sky_pass`] clears the depth, [`water_pass`] draws the water surface, [`sky_pass`] fills what
+//! is left with the sky, [`overlay_pass`] draws the wireframe and normals when asked for.
 
 mod mesh_pass;
 mod overlay_pass;
@@ -65,7 +65,7 @@ impl Renderer {
             },
             clip_from_world: scene.camera.clip_from_world(width as f32 / height as f32),
         };
-        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
+        sky_pass::clear_depth(fb);
         if let Some(terrain) = &world.terrain {
             terrain_pass::draw(fb, &frame, terrain, &mut self.clip_vertices, &mut self.face_colors);
         }
@@ -80,6 +80,8 @@ impl Renderer {
                 world.terrain.as_ref(),
             );
         }
+        // After every geometry pass: the sky fills only what they left at the far plane.
+        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
         if let Some(water) = &world.water {
             overlay_pass::draw(fb, &frame, &water.mesh, scene.render.wireframe, scene.render.normals);
         }

@@ -1,15 +1,23 @@
-//! Clears the frame to the sky seen along each pixel's view ray, and the depth to the far plane.
+//! The sky seen along each pixel's view ray. The depth is cleared before the geometry passes
+//! ([`clear_depth`]) and the sky drawn after them ([`draw`]), only where no geometry landed, so a
+//! frame full of water does not pay for a sky it hides.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::raster::Framebuffer;
 use crate::scene::{Camera, Scene, SunDisc};
 
-/// Fills `fb` with the sky of `scene` (and its sun disc, if any) and clears depth.
+/// Clears depth to the far plane (colour is left for [`draw`]).
+pub fn clear_depth(fb: &mut Framebuffer) {
+    fb.depth.par_iter_mut().for_each(|d| *d = 1.0);
+}
+
+/// Fills every pixel still at the far plane with the sky of `scene` (and its sun disc, if any).
 pub fn draw(fb: &mut Framebuffer, scene: &Scene, sun: Option<&SunDisc>) {
     let (width, height) = (fb.width(), fb.height());
     let rays = SkyRays::new(&scene.camera, width as f32 / height as f32);
-    fb.clear_with(|x, y| {
+    fb.fill_background(|x, y| {
         let ndc_x = 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
         let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / height as f32;
         let dir = rays.direction(ndc_x, ndc_y);

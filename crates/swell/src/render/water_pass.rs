@@ -58,7 +58,7 @@ pub fn draw(
             let positions = &mesh.positions;
             face_colors.resize(mesh.indices.len() / 3, Vec3::ZERO);
             face_colors.par_iter_mut().zip(mesh.indices.par_chunks_exact(3)).for_each(|(c, t)| {
-                let [a, b, d] = [0, 1, 2].map(|k| positions[t[k] as usize]);
+                let (a, b, d) = (positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]);
                 let n = (b - a).cross(d - a).normalize_or(Vec3::Y);
                 let f = (foam(t[0] as usize) + foam(t[1] as usize) + foam(t[2] as usize)) / 3.0;
                 *c = shade_water(env, &look, lobe, (a + b + d) / 3.0, n, f);

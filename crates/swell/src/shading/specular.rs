@@ -57,3 +57,54 @@ pub fn shade_opaque(env: &Environment, look: &OpaqueLook, p: Vec3, n: Vec3) -> V
     }
     diffuse + look.specular * specular(env, p, n, to_eye, look.lobe, look.shininess)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Light, Sky};
+
+    fn env_with(lights: &[Light], sky: &Sky) -> Environment<'static> {
+        let lights: &'static [Light] = Box::leak(lights.to_vec().into_boxed_slice());
+        let sky: &'static Sky = Box::leak(Box::new(*sky));
+        Environment { lights, ambient: Vec3::ZERO, sky, sun: None, eye: Vec3::ZERO, time: 0.0 }
+    }
+
+    #[test]
+    fn both_lobes_peak_at_the_mirror_direction_and_phong_is_narrower() {
+        // Light from 30° off the normal on one side.
+        let l = Vec3::new(-0.5, 3f32.sqrt() / 2.0, 0.0);
+        let env = env_with(&[Light::Directional { direction: -l, color: Vec3::ONE, intensity: 1.0 }], &Sky::default());
+        let n = Vec3::Y;
+        let at = |deg: f32, lobe| {
+            let a = deg.to_radians();
+            specular(&env, Vec3::ZERO, n, Vec3::new(a.sin(), a.cos(), 0.0), lobe, 50.0).x
+        };
+        for lobe in [Lobe::Phong, Lobe::BlinnPhong] {
+            assert!((at(30.0, lobe) - 1.0).abs() < 1e-5, "{lobe:?} peaks at the mirror direction");
+            assert!(at(20.0, lobe) < 1.0 && at(40.0, lobe) < 1.0);
+        }
+        // The half vector moves half as fast as the mirror vector: Blinn's lobe is wider.
+        assert!(at(40.0, Lobe::Phong) < at(40.0, Lobe::BlinnPhong));
+        // No highlight from a light below the surface.
+        let below =
+            env_with(&[Light::Directional { direction: Vec3::Y, color: Vec3::ONE, intensity: 1.0 }], &Sky::default());
+        assert_eq!(specular(&below, Vec3::ZERO, n, Vec3::Y, Lobe::BlinnPhong, 10.0), Vec3::ZERO);
+    }
+
+    #[test]
+    fn opaque_shading_is_ambient_plus_lambert_plus_specular() {
+        let env = env_with(
+            &[Light::Directional { direction: Vec3::new(0.0, -1.0, 0.0), color: Vec3::ONE, intensity: 2.0 }],
+            &Sky::default(),
+        );
+        let mut env = env;
+        env.ambient = Vec3::splat(0.1);
+        env.eye = Vec3::new(0.0, 5.0, 0.0);
+        let look = OpaqueLook { albedo: Vec3::splat(0.5), specular: 0.0, shininess: 10.0, lobe: Lobe::Phong };
+        let c = shade_opaque(&env, &look, Vec3::ZERO, Vec3::Y);
+        assert!((c - Vec3::splat(0.5 * (0.1 + 2.0))).length() < 1e-6);
+        let shiny = OpaqueLook { specular: 0.25, ..look };
+        let c2 = shade_opaque(&env, &shiny, Vec3::ZERO, Vec3::Y);
+        assert!((c2 - c - Vec3::splat(0.25 * 2.0)).length() < 1e-5);
+    }
+}
