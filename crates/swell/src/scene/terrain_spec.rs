@@ -315,6 +315,19 @@ mod tests {
     }
 
     #[test]
+    fn every_generator_gives_the_same_field_on_one_and_two_threads() {
+        for g in ["diamond-square", "random-average", "noise", "hills", "flat", "slope"] {
+            let t = parse(&format!("generator = '{g}'\nsize = 129\n")).unwrap();
+            let run = |threads| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                pool.install(|| t.build()).unwrap()
+            };
+            let (a, b) = (run(1), run(2));
+            assert!(a.heights().iter().zip(b.heights()).all(|(x, y)| x.to_bits() == y.to_bits()), "{g}");
+        }
+    }
+
+    #[test]
     fn relative_heightmap_paths_follow_the_scene_file() {
         let mut t = parse("generator = 'heightmap'\npath = 'maps/a.png'\nheight_scale = 10.0\n").unwrap();
         t.resolve_paths(Path::new("/scenes"));

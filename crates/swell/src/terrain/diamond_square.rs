@@ -20,7 +20,7 @@ use glam::Vec2;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::height_field::{square_field, HeightField, MAX_TERRAIN_SIZE};
+use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use super::lattice_random::LatticeRandom;
 use super::smoothing::{smooth, MAX_SMOOTHING_PASSES};
 use crate::error::{check_count, check_finite_vec, check_non_negative, check_range, Error, Result};
@@ -143,7 +143,7 @@ pub fn diamond_square(size: u32, extent: Vec2, p: &DiamondSquareParams) -> Resul
         level += 1;
     }
     smooth(&mut h, n, n, p.smoothing);
-    square_field(n, extent, h)
+    HeightField::new(size, size, extent, h)
 }
 
 /// One level: squares of `step` cells split into four.
