@@ -115,7 +115,7 @@ pub struct RenderArgs {
 /// `swell terrain`.
 #[derive(Args, Debug)]
 pub struct TerrainArgs {
-    /// The generator: diamond-square, random-average, noise, hills, flat or slope.
+    /// The generator: diamond-square, random-average, noise, hills, flat, slope or channel.
     #[arg(long, value_name = "NAME")]
     pub generator: String,
     /// Vertices per side (diamond-square: 2^n + 1, e.g. 257, 513, 1025).

@@ -110,7 +110,10 @@ fn bad_input_fails_clearly_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let cases: [(&[&str], &str); 5] = [
         (&["--generator", "diamond-square", "--size", "100"], "2^n + 1"),
-        (&["--generator", "volcano"], "valid: diamond-square, random-average, noise, hills, flat, slope, heightmap"),
+        (
+            &["--generator", "volcano"],
+            "valid: diamond-square, random-average, noise, hills, flat, slope, heightmap, channel",
+        ),
         (&["--generator", "noise", "--set", "octaves=99"], "terrain.octaves = 99 is outside [1, 16]"),
         (&["--generator", "hills", "--extent=-5"], "terrain.extent[0] = -5"),
         (&["--generator", "heightmap"], "heightmap"),

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use super::TerrainSpec;
 use crate::error::Result;
-use crate::math::Transform;
+use crate::math::{GridSpec, Transform};
 use crate::mesh::SurfaceMesh;
 use crate::shading::TerrainMaterial;
 use crate::terrain::HeightField;
@@ -24,7 +24,8 @@ pub struct TerrainBody {
     pub material: TerrainMaterial,
     /// Depth (m) of the bottom below the water at rest under each water vertex (rest position),
     /// negative where the ground stands above the water, `f32::INFINITY` where no terrain lies
-    /// below (deep water). Empty when the scene has no water. Filled by [`super::World::new`].
+    /// below (deep water). Empty when the scene has no water. Filled by [`super::World::new`]
+    /// through [`TerrainBody::measure_water_depths`].
     pub water_depths: Vec<f32>,
     model_from_world: Mat4,
     /// World-space ground heights for transforms that tilt the field (rotation about X or Z),
@@ -78,6 +79,17 @@ impl TerrainBody {
     /// water, negative on dry land, `None` outside the terrain.
     pub fn depth_at(&self, x: f32, z: f32) -> Option<f32> {
         self.ground_height(x, z).map(|g| -g)
+    }
+
+    /// Fills [`TerrainBody::water_depths`] for the rest positions of the water grid `grid`.
+    pub fn measure_water_depths(&mut self, grid: &GridSpec) {
+        let nx = grid.verts_x();
+        self.water_depths = (0..grid.vertex_count())
+            .map(|k| {
+                let r = grid.rest_position(k % nx, k / nx);
+                self.depth_at(r.x, r.y).unwrap_or(f32::INFINITY)
+            })
+            .collect();
     }
 
     /// Median of the finite [`TerrainBody::water_depths`] that are positive: a single depth for

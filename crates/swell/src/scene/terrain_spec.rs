@@ -26,9 +26,9 @@ use crate::error::{check_count, check_finite_vec, check_positive, check_range, E
 use crate::math::Transform;
 use crate::shading::TerrainMaterial;
 use crate::terrain::{
-    check_diamond_square_size, diamond_square, flat, hills, load_heightmap, noise_terrain, random_average, slope,
-    DiamondSquareParams, FlatParams, HeightField, HeightmapOverrides, HillsParams, NoiseTerrainParams,
-    RandomAverageParams, SlopeParams, MAX_TERRAIN_SIZE,
+    channel, check_diamond_square_size, diamond_square, flat, hills, load_heightmap, noise_terrain, random_average,
+    slope, ChannelParams, DiamondSquareParams, FlatParams, HeightField, HeightmapOverrides, HillsParams,
+    NoiseTerrainParams, RandomAverageParams, SlopeParams, MAX_TERRAIN_SIZE,
 };
 
 /// Vertices per side when `terrain.size` is not given.
@@ -69,11 +69,13 @@ pub enum TerrainGenerator {
     Slope(SlopeParams),
     /// `generator = "heightmap"`.
     Heightmap(HeightmapSpec),
+    /// `generator = "channel"` (paper 004's river between banks).
+    Channel(ChannelParams),
 }
 
 /// The names `terrain.generator` accepts.
 pub const TERRAIN_GENERATORS: &[&str] =
-    &["diamond-square", "random-average", "noise", "hills", "flat", "slope", "heightmap"];
+    &["diamond-square", "random-average", "noise", "hills", "flat", "slope", "heightmap", "channel"];
 
 impl TerrainGenerator {
     /// Reads the generator's keys (everything in `[terrain]` but the common keys).
@@ -86,6 +88,7 @@ impl TerrainGenerator {
             "flat" => Self::Flat(deserialize_at(rest, "terrain", source)?),
             "slope" => Self::Slope(deserialize_at(rest, "terrain", source)?),
             "heightmap" => Self::Heightmap(deserialize_at(rest, "terrain", source)?),
+            "channel" => Self::Channel(deserialize_at(rest, "terrain", source)?),
             other => {
                 return Err(Error::Parse {
                     path: source.to_string(),
@@ -108,6 +111,7 @@ impl TerrainGenerator {
             Self::Hills(p) => p.validate(key),
             Self::Flat(p) => p.validate(key),
             Self::Slope(p) => p.validate(key),
+            Self::Channel(p) => p.validate(key),
             Self::Heightmap(h) => {
                 if h.path.as_os_str().is_empty() {
                     return Err(Error::invalid("terrain.path", "is empty; give the heightmap PNG's path"));
@@ -234,6 +238,7 @@ impl TerrainSpec {
             TerrainGenerator::Hills(p) => hills(size, extent, p),
             TerrainGenerator::Flat(p) => flat(size, extent, p),
             TerrainGenerator::Slope(p) => slope(size, extent, p),
+            TerrainGenerator::Channel(p) => channel(size, extent, p),
             TerrainGenerator::Heightmap(h) => load_heightmap(
                 &h.path,
                 HeightmapOverrides {
@@ -289,7 +294,7 @@ mod tests {
         assert_eq!(TerrainSpec::from_table(t.to_table(), "again").unwrap(), t);
         let f = t.build().unwrap();
         assert_eq!((f.cols(), f.extent()), (33, Vec2::new(50.0, 40.0)));
-        for g in ["random-average", "noise", "hills", "flat", "slope"] {
+        for g in ["random-average", "noise", "hills", "flat", "slope", "channel"] {
             let t = parse(&format!("generator = '{g}'\nsize = 17\n")).unwrap();
             assert_eq!(TerrainSpec::from_table(t.to_table(), "again").unwrap(), t);
             assert_eq!(t.build().unwrap().cols(), 17, "{g}");
@@ -312,6 +317,19 @@ mod tests {
         assert!(e.starts_with("terrain.transform.scale[1] = -1"), "{e}");
         let e = parse("generator = 'flat'\n[material]\nrock_slope_deg = 95.0\n").unwrap_err().to_string();
         assert!(e.starts_with("terrain.material.rock_slope_deg = 95"), "{e}");
+    }
+
+    #[test]
+    fn every_generator_gives_the_same_field_on_one_and_two_threads() {
+        for g in ["diamond-square", "random-average", "noise", "hills", "flat", "slope", "channel"] {
+            let t = parse(&format!("generator = '{g}'\nsize = 129\n")).unwrap();
+            let run = |threads| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                pool.install(|| t.build()).unwrap()
+            };
+            let (a, b) = (run(1), run(2));
+            assert!(a.heights().iter().zip(b.heights()).all(|(x, y)| x.to_bits() == y.to_bits()), "{g}");
+        }
     }
 
     #[test]

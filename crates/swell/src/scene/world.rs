@@ -49,6 +49,15 @@ impl World {
     /// reuse these buffers).
     pub fn new(scene: Scene) -> Result<Self> {
         scene.validate()?;
+        // Terrain first: the depth under the water is known before the water model is built
+        // (`TerrainBody::median_water_depth` for models that take one depth).
+        let mut terrain = match &scene.terrain {
+            Some(spec) => Some(TerrainBody::new(spec)?),
+            None => None,
+        };
+        if let (Some(t), Some(w)) = (&mut terrain, &scene.water) {
+            t.measure_water_depths(&w.surface.grid()?);
+        }
         let water = match &scene.water {
             Some(spec) => {
                 let model = spec.model.build()?;
@@ -58,12 +67,7 @@ impl World {
             }
             None => None,
         };
-        let terrain = match &scene.terrain {
-            Some(spec) => Some(TerrainBody::new(spec)?),
-            None => None,
-        };
         let mut world = Self { scene, water, terrain, time: f64::NAN };
-        world.measure_water_depths();
         world.update(0.0)?;
         Ok(world)
     }
@@ -86,19 +90,6 @@ impl World {
     /// water, negative on dry land, `None` where there is no terrain below (deep water).
     pub fn depth_at(&self, x: f32, z: f32) -> Option<f32> {
         self.terrain.as_ref().and_then(|t| t.depth_at(x, z))
-    }
-
-    /// Fills the terrain's depth under each water vertex (see [`TerrainBody::water_depths`]).
-    fn measure_water_depths(&mut self) {
-        if let (Some(t), Some(w)) = (&mut self.terrain, &self.water) {
-            let grid = w.mesh.grid;
-            t.water_depths = (0..grid.vertex_count())
-                .map(|k| {
-                    let r = grid.rest_position(k % grid.verts_x(), k / grid.verts_x());
-                    t.depth_at(r.x, r.y).unwrap_or(f32::INFINITY)
-                })
-                .collect();
-        }
     }
 
     /// The time of the last [`World::update`], seconds.

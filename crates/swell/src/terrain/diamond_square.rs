@@ -20,7 +20,7 @@ use glam::Vec2;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::height_field::{square_field, HeightField, MAX_TERRAIN_SIZE};
+use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use super::lattice_random::LatticeRandom;
 use super::smoothing::{smooth, MAX_SMOOTHING_PASSES};
 use crate::error::{check_count, check_finite_vec, check_non_negative, check_range, Error, Result};
@@ -48,8 +48,9 @@ pub struct DiamondSquareParams {
     /// Default 20.
     pub amplitude: f32,
     /// Factor applied to the offset range after each level, in [0, 1]: 0.5 is paper 001's halving
-    /// (a fractal of dimension ~2.5 when `amplitude` matches the extent); higher is rougher,
-    /// lower smoother. Default 0.5.
+    /// (offsets proportional to the square's size). As in fractional Brownian motion (Fournier,
+    /// Fussell and Carpenter, CACM 1982) `roughness = 2^-H` for a Hurst exponent H, the surface's
+    /// fractal dimension being about `3 - H`: higher is rougher, lower smoother. Default 0.5.
     pub roughness: f32,
     /// Neighbour-averaging passes after generation (paper 001 §2.1), in [0, 64]. Default 0.
     pub smoothing: u32,
@@ -102,7 +103,7 @@ pub(crate) fn check_seed(key: &str, seed: u64) -> Result<()> {
 /// rule and the nearest valid sizes.
 pub fn check_diamond_square_size(key: &str, size: u32) -> Result<()> {
     let cells = size.wrapping_sub(1);
-    if size >= 3 && size <= MAX_TERRAIN_SIZE && cells.is_power_of_two() {
+    if (3..=MAX_TERRAIN_SIZE).contains(&size) && cells.is_power_of_two() {
         return Ok(());
     }
     let max_n = (MAX_TERRAIN_SIZE - 1).ilog2();
@@ -142,7 +143,7 @@ pub fn diamond_square(size: u32, extent: Vec2, p: &DiamondSquareParams) -> Resul
         level += 1;
     }
     smooth(&mut h, n, n, p.smoothing);
-    square_field(n, extent, h)
+    HeightField::new(size, size, extent, h)
 }
 
 /// One level: squares of `step` cells split into four.

@@ -168,11 +168,6 @@ impl HeightField {
     }
 }
 
-/// Builds a square field from heights a generator filled (sizes already checked by the generator).
-pub(crate) fn square_field(size: usize, extent: Vec2, heights: Vec<f32>) -> Result<HeightField> {
-    HeightField::new(size as u32, size as u32, extent, heights)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,11 +1,12 @@
 //! Terrain: height fields in metres and the generators that make them (paper 001), heightmap
-//! files, and simple bottoms for pools and beaches.
+//! files, simple bottoms for pools and beaches, and river channels.
 //!
 //! Every generator takes a size (vertices per side), a horizontal extent in metres and its own
 //! parameters (with `validate`), and returns a [`HeightField`] centred on the model origin. The
 //! scene places it in the world with a [`crate::math::Transform`].
 
 mod bottom;
+mod channel;
 mod diamond_square;
 mod height_field;
 mod heightmap_io;
@@ -16,6 +17,7 @@ mod random_average;
 mod smoothing;
 
 pub use bottom::{flat, slope, FlatParams, SlopeParams};
+pub use channel::{channel, ChannelParams};
 pub use diamond_square::{check_diamond_square_size, diamond_square, DiamondSquareParams, MAX_AMPLITUDE};
 pub use height_field::{HeightField, MAX_TERRAIN_SIZE};
 pub use heightmap_io::{
