@@ -128,3 +128,14 @@ pub fn check_finite_vec(key: &str, v: &[f32]) -> Result<()> {
         Err(Error::invalid(key, format!("{v:?} must have finite components")))
     }
 }
+
+/// Checks that a horizontal direction (x, z) is finite and non-zero (it is normalised on use),
+/// naming `key` in the error.
+pub fn check_direction(key: &str, d: glam::Vec2) -> Result<()> {
+    let len = d.length();
+    if len.is_finite() && len > 1e-6 {
+        Ok(())
+    } else {
+        Err(Error::invalid(key, format!("{:?} must be a finite, non-zero (x, z) vector", d.to_array())))
+    }
+}

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{PointWave, SurfacePoint, WaveModel};
-use crate::error::{check_finite_vec, check_non_negative, check_positive, Error, Result};
+use crate::error::{check_direction, check_finite_vec, check_non_negative, check_positive, Error, Result};
 use crate::math::GridSpec;
 use crate::spectrum::Dispersion;
 
@@ -67,13 +67,7 @@ impl AiryParams {
             check_non_negative(&format!("{wk}.amplitude"), w.amplitude)?;
             check_positive(&format!("{wk}.wavelength"), w.wavelength)?;
             check_finite_vec(&format!("{wk}.phase"), &[w.phase])?;
-            let len = w.direction.length();
-            if !(len.is_finite() && len > 1e-6) {
-                return Err(Error::invalid(
-                    format!("{wk}.direction"),
-                    format!("{:?} must be a finite, non-zero (x, z) vector", w.direction.to_array()),
-                ));
-            }
+            check_direction(&format!("{wk}.direction"), w.direction)?;
         }
         Ok(())
     }

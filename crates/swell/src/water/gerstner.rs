@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
-use crate::error::{check_range, Error, Result};
+use crate::error::{check_direction, check_range, Error, Result};
 use crate::math::GridSpec;
 
 /// Most waves one [`Gerstner`] model sums (paper 000 uses up to 12; 64 leaves room for rich seas
@@ -58,13 +58,7 @@ impl GerstnerWave {
         check_range(&format!("{key}.wavelength"), self.wavelength, 1e-6, MAX_WAVE_LENGTH_M)?;
         check_range(&format!("{key}.speed"), self.speed, 0.0, MAX_WAVE_SPEED)?;
         check_range(&format!("{key}.steepness"), self.steepness, 0.0, 1.0)?;
-        let len = self.direction.length();
-        if !(len.is_finite() && len > 1e-6) {
-            return Err(Error::invalid(
-                format!("{key}.direction"),
-                format!("{:?} must be a finite, non-zero (x, z) vector", self.direction.to_array()),
-            ));
-        }
+        check_direction(&format!("{key}.direction"), self.direction)?;
         Ok(())
     }
 

@@ -14,7 +14,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
-use crate::error::{check_non_negative, check_positive, check_range, Error, Result};
+use crate::error::{check_direction, check_non_negative, check_positive, check_range, Error, Result};
 use crate::math::{fast_sin_cos, GridSpec};
 
 /// Most waves one [`SteepSines`] sums.
@@ -64,13 +64,7 @@ impl SteepSinesParams {
             check_positive(&format!("{wk}.frequency"), w.frequency)?;
             check_non_negative(&format!("{wk}.velocity"), w.velocity)?;
             check_range(&format!("{wk}.exponent"), w.exponent, 1.0, MAX_STEEP_SINE_EXPONENT)?;
-            let len = w.direction.length();
-            if !(len.is_finite() && len > 1e-6) {
-                return Err(Error::invalid(
-                    format!("{wk}.direction"),
-                    format!("{:?} must be a finite, non-zero (x, z) vector", w.direction.to_array()),
-                ));
-            }
+            check_direction(&format!("{wk}.direction"), w.direction)?;
         }
         Ok(())
     }

@@ -9,7 +9,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
-use crate::error::{check_range, Error, Result};
+use crate::error::{check_direction, check_range, Error, Result};
 use crate::math::GridSpec;
 
 /// Most waves one [`SumOfSines`] sums.
@@ -38,13 +38,7 @@ impl SineWave {
         check_range(&format!("{key}.amplitude"), self.amplitude, 0.0, MAX_WAVE_LENGTH_M)?;
         check_range(&format!("{key}.wavelength"), self.wavelength, 1e-6, MAX_WAVE_LENGTH_M)?;
         check_range(&format!("{key}.speed"), self.speed, 0.0, MAX_WAVE_SPEED)?;
-        let len = self.direction.length();
-        if !(len.is_finite() && len > 1e-6) {
-            return Err(Error::invalid(
-                format!("{key}.direction"),
-                format!("{:?} must be a finite, non-zero (x, z) vector", self.direction.to_array()),
-            ));
-        }
+        check_direction(&format!("{key}.direction"), self.direction)?;
         Ok(())
     }
 }
