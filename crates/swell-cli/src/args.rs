@@ -143,7 +143,8 @@ pub struct TerrainArgs {
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// grid-size, polygons, waves (paper 000); zbuffer-threads, zbuffer-sizes (paper 001); realtime;
-    /// all (every one of these); or ocean (the FFT ocean's step, stage by stage, printed to stdout).
+    /// ocean (the FFT ocean's step, stage by stage, grids 64..1024); all (every one of these).
+    /// `ocean --grid N [--json]` prints one grid's figures to stdout instead.
     #[arg(value_name = "EXPERIMENT")]
     pub experiment: String,
     /// Directory for the results (created if missing): EXPERIMENT.md, .json and .png.

@@ -76,3 +76,40 @@ fn unknown_experiments_and_bad_run_counts_are_refused_before_any_work() {
     assert!(stderr(&o).contains("--runs"), "{}", stderr(&o));
     assert!(!dir.path().join("res").exists(), "a refused run created its output directory");
 }
+
+#[test]
+fn ocean_writes_each_stage_per_grid_and_keeps_its_stdout_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = swell(dir.path(), &["bench", "ocean", "--runs", "1", "--out", "res"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (md, json) = results(&dir.path().join("res"), "ocean");
+    assert!(md.contains("| 64x64 |") && md.contains("| 1024x1024 |"), "{md}");
+    let series = json["series"].as_array().unwrap();
+    let names: Vec<&str> = series.iter().map(|s| s["name"].as_str().unwrap()).collect();
+    assert!(names.iter().any(|n| n.starts_with("evolve")) && names.iter().any(|n| n.starts_with("FFTs")), "{names:?}");
+    assert!(names.iter().any(|n| n.starts_with("foam")) && names.iter().any(|n| n.starts_with("displaced mesh")));
+    for s in series {
+        let points = s["points"].as_array().unwrap();
+        assert_eq!(points.len(), 5, "{s}");
+        for p in points {
+            let (median, min, max) = (
+                p["swell"]["median_ms"].as_f64().unwrap(),
+                p["swell"]["min_ms"].as_f64().unwrap(),
+                p["swell"]["max_ms"].as_f64().unwrap(),
+            );
+            assert!(median.is_finite() && min <= median && median <= max, "{p}");
+        }
+    }
+    // The stages are parts of the simulation: their medians cannot add up to much more than it.
+    let median = |s: usize, row: usize| series[s]["points"][row]["swell"]["median_ms"].as_f64().unwrap();
+    let sim = median(0, 4);
+    let parts: f64 = (1..4).map(|s| median(s, 4)).sum();
+    assert!(parts <= 1.5 * sim + 0.5, "stages {parts} ms against the simulation's {sim} ms");
+    // `--grid N --json` still prints one JSON object and writes nothing.
+    let o = swell(dir.path(), &["bench", "ocean", "--grid", "16", "--steps", "2", "--json", "--out", "none"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["grid"], 16);
+    assert!(v["median_ms"].as_f64().unwrap() > 0.0 && v["stages"]["fft_ms"].is_number());
+    assert!(!dir.path().join("none").exists());
+}

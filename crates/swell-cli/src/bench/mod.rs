@@ -85,6 +85,11 @@ pub const EXPERIMENTS: &[Experiment] = &[
         description: "frames per second of each preset at 1280x720",
         run: realtime::realtime,
     },
+    Experiment {
+        name: "ocean",
+        description: "FFT ocean step per stage (evolve, FFTs, foam, mesh) on grids 64..1024",
+        run: ocean_step::ocean_experiment,
+    },
 ];
 
 /// The experiments `name` stands for (`all` = every one), or an error listing the valid names.

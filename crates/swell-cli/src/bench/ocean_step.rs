@@ -1,6 +1,10 @@
 //! `swell bench ocean`: wall-clock timings of the FFT ocean's full step (spectrum evolution, 8
-//! fields, foam) and of the displaced mesh, median over many steps, stage by stage. Prints a short
-//! table per grid, or one JSON object per grid with `--json`.
+//! fields, foam) and of the displaced mesh, median over many steps, stage by stage.
+//!
+//! Two forms: [`ocean_experiment`], the `ocean` experiment of `swell bench ocean` and `swell bench
+//! all` (grids 64..1024, a Markdown table, JSON and a plot in `--out` like every experiment), and
+//! [`run`], `swell bench ocean --grid N [--json]`, which prints one grid's figures to stdout (a
+//! short table, or one JSON object with `--json`).
 
 use std::time::Instant;
 
@@ -11,6 +15,9 @@ use swell::scene::{preset, WaterModelSpec};
 use swell::water::{FftOcean, WaveModel, FFT_GRID_RANGE};
 use swell::{Error, Result};
 
+use super::report::{PaperUnit, PlotKind, Point, Report, Series};
+use super::timing::summarize;
+use super::Context;
 use crate::args::BenchArgs;
 use crate::cmd::thread_pool;
 
@@ -22,7 +29,8 @@ const STEP_S: f64 = 1.0 / 60.0;
 /// Grids timed when `--grid` is not given (issue 9: 64..1024, single cascade).
 const DEFAULT_GRIDS: [u32; 5] = [64, 128, 256, 512, 1024];
 
-/// Runs `swell bench ocean`: the `--grid` given, or each of [`DEFAULT_GRIDS`].
+/// Runs `swell bench ocean --grid N` or `--json`: the `--grid` given, or each of [`DEFAULT_GRIDS`],
+/// printed to stdout.
 pub fn run(a: &BenchArgs) -> Result<()> {
     let grids: Vec<u32> = match a.grid {
         Some(g) => vec![g],
@@ -44,6 +52,104 @@ fn median(v: &mut [f64]) -> f64 {
     }
 }
 
+/// The `ocean` preset's FFT parameters at grid side `grid`.
+fn preset_params(grid: u32) -> Result<swell::water::FftOceanParams> {
+    match preset("ocean")?.water.map(|w| w.model) {
+        Some(WaterModelSpec::Fft(p)) => Ok(swell::water::FftOceanParams { grid, ..p }),
+        _ => Err(Error::invalid("preset ocean", "is not an FFT sea")),
+    }
+}
+
+/// Stage names of the `ocean` experiment, in series order.
+const STAGES: [&str; 5] = [
+    "simulation (evolve + FFTs + foam)",
+    "evolve h(k, t)",
+    "FFTs (8 fields, 4 packed transforms)",
+    "foam (Jacobian)",
+    "displaced mesh (positions, normals, foam)",
+];
+
+/// The `ocean` experiment: for each grid of [`DEFAULT_GRIDS`] the `ocean` preset's sea (one
+/// cascade) is stepped at 60 steps per second of simulated time, on all threads; each stage's
+/// wall-clock time per step is a row of its own series.
+pub fn ocean_experiment(ctx: &Context) -> Result<Report> {
+    let mut series: Vec<Series> =
+        STAGES.iter().map(|name| Series { name: (*name).to_string(), points: Vec::new() }).collect();
+    for grid in DEFAULT_GRIDS {
+        ctx.progress(&format!("{grid}x{grid}"));
+        let params = preset_params(grid)?;
+        let mut ocean = FftOcean::new(&params)?;
+        let mut mesh = SurfaceMesh::new(GridSpec::new(Vec2::ZERO, Vec2::splat(params.patch_size), grid, grid)?);
+        let mut samples: [Vec<f64>; 5] = Default::default();
+        let reps = ctx.reps;
+        let budget = std::time::Duration::from_secs_f64(reps.budget_s);
+        let mut k = 0u32;
+        let mut started = None;
+        loop {
+            let timed = k >= reps.warmup;
+            let n = samples[0].len();
+            if timed && n >= reps.min_runs.max(1) as usize {
+                let out_of_time = started.is_some_and(|s: Instant| s.elapsed() >= budget);
+                if n >= reps.max_runs as usize || out_of_time {
+                    break;
+                }
+            }
+            if timed && started.is_none() {
+                started = Some(Instant::now());
+            }
+            let t = f64::from(k + 1) * STEP_S;
+            let t0 = Instant::now();
+            ocean.advance(t)?;
+            let t1 = Instant::now();
+            mesh.displace(&ocean, t);
+            let t2 = Instant::now();
+            if timed {
+                let st = ocean.stage_times();
+                let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+                for (v, x) in samples.iter_mut().zip([ms(t1 - t0), st.evolve_ms, st.fft_ms, st.foam_ms, ms(t2 - t1)]) {
+                    v.push(x);
+                }
+            }
+            k += 1;
+        }
+        for (s, v) in series.iter_mut().zip(samples.iter_mut()) {
+            s.points.push(Point {
+                x: f64::from(grid),
+                label: format!("{grid}x{grid}"),
+                swell: summarize(v),
+                paper: None,
+            });
+        }
+    }
+    Ok(Report {
+        experiment: "ocean",
+        title: "FFT ocean step, stage by stage, against the grid".into(),
+        source: "issue 4's performance goals; no paper table".into(),
+        setup: vec![
+            "The `ocean` preset's sea (JONSWAP, 14 m/s, one cascade, foam on) at each FFT grid N x N, stepped at \
+             1/60 s of simulated time per step, all threads."
+                .into(),
+            "Simulation = evolving h(k, t) + eight fields (height, 2 choppy displacements, 2 slopes, 3 Jacobian \
+             terms) by four packed complex inverse FFTs + foam; the mesh is N x N cells over the patch \
+             (positions, normals, foam), as `swell bench ocean --grid N` reports."
+                .into(),
+            "Goals (issue 4, 2 cores): simulation about 0.4 ms at 256x256 and under 10 ms at 1024x1024, 5x faster \
+             than Blender's Ocean modifier (1.8-2.6 ms and 47 ms); the mesh 20x faster than Blender's (41 ms \
+             and 890 ms)."
+                .into(),
+            "Each stage's time is measured inside the same steps (its own clock), so the stages of one row \
+             come from the same runs; the spread is over steps."
+                .into(),
+        ],
+        x_label: "grid".into(),
+        paper_unit: PaperUnit::None,
+        plot: PlotKind::Relative,
+        series,
+        machine: ctx.machine.clone(),
+        repetitions: ctx.reps,
+    })
+}
+
 /// Times the FFT ocean of preset `ocean` at grid N: per step the simulation (evolve, FFTs, foam)
 /// and the displaced mesh (N x N cells over the patch, positions, normals and foam).
 fn ocean(grid: u32, a: &BenchArgs) -> Result<()> {
@@ -51,11 +157,7 @@ fn ocean(grid: u32, a: &BenchArgs) -> Result<()> {
     if !(grid.is_power_of_two() && (lo..=hi).contains(&grid)) {
         return Err(Error::out_of_range("--grid", grid, format!("powers of two in [{lo}, {hi}]")));
     }
-    let mut params = match preset("ocean")?.water.map(|w| w.model) {
-        Some(WaterModelSpec::Fft(p)) => p,
-        _ => unreachable!("preset ocean is an FFT sea"),
-    };
-    params.grid = grid;
+    let params = preset_params(grid)?;
     let pool = thread_pool(a.threads)?;
     let mesh_grid = GridSpec::new(Vec2::ZERO, Vec2::splat(params.patch_size), grid, grid)?;
     let steps = match a.steps {
@@ -122,4 +224,14 @@ fn ocean(grid: u32, a: &BenchArgs) -> Result<()> {
         println!("  step with displaced mesh     {:9.3} ms", median(&mut total));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn all_includes_the_ocean_experiment() {
+        let all = super::super::select("all").unwrap();
+        assert!(all.iter().any(|e| e.name == "ocean"));
+        assert_eq!(super::super::select("ocean").unwrap()[0].name, "ocean");
+    }
 }

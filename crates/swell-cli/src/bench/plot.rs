@@ -21,8 +21,13 @@ const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans-subset.ttf");
 /// Plot size in pixels.
 const SIZE: (u32, u32) = (960, 600);
 /// One colour per series; swell solid, the paper dashed in the same colour.
-const PALETTE: [RGBColor; 4] =
-    [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189)];
+const PALETTE: [RGBColor; 5] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+];
 
 /// Registers the bundled font once; false if it does not parse (a build defect, reported as an
 /// error rather than a panic).

@@ -6,11 +6,9 @@ mod fast_trig;
 mod grid_spec;
 mod perlin;
 mod transform;
-mod turns;
 
 pub use color::{linear_to_srgb, srgb_to_linear};
-pub use fast_trig::{fast_sin_cos, FAST_SIN_COS_MAX_ERROR};
+pub use fast_trig::{fast_floor, fast_sin_cos, reduce_turns, sin_cos_turns, FAST_SIN_COS_MAX_ERROR};
 pub use grid_spec::{GridSpec, MAX_GRID_CELLS};
 pub use perlin::Perlin;
 pub use transform::{Transform, MAX_SCALE};
-pub use turns::{fast_floor, reduce_turns, sin_cos_turns};

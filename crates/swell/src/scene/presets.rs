@@ -107,6 +107,11 @@ pub const PRESETS: &[Preset] = &[
         description: "spectral (FFT) ocean: a JONSWAP wind sea of 14 m/s with choppy crests and foam",
         toml: include_str!("../../presets/ocean.toml"),
     },
+    Preset {
+        name: "ocean-blender",
+        description: "FFT ocean given by Blender's Ocean modifier keys ([water.blender]): aligned Phillips sea",
+        toml: include_str!("../../presets/ocean-blender.toml"),
+    },
 ];
 
 /// The scene of preset `name`, parsed and validated.

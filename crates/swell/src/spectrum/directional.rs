@@ -2,7 +2,7 @@
 
 use std::f64::consts::TAU;
 
-use super::{Jonswap, OceanDispersion, Phillips, PiersonMoskowitz, Spreading, Swell, Tma};
+use super::{Dispersion, Jonswap, Phillips, PiersonMoskowitz, Spreading, Swell, Tma};
 
 /// The wind-sea spectrum model.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,24 +19,24 @@ pub enum WindSea {
 
 impl WindSea {
     /// Omnidirectional wavenumber spectrum `Φ(k) = S(w(k)) dw/dk` (m³/rad) at k (rad/m).
-    pub fn density_k(&self, k: f64, dispersion: &OceanDispersion) -> f64 {
+    pub fn density_k(&self, k: f64, dispersion: &Dispersion) -> f64 {
         if k <= 0.0 {
             return 0.0;
         }
-        let w = dispersion.omega(k);
+        let w = dispersion.omega_f64(k);
         let s = match self {
             WindSea::Phillips(p) => return p.density_k(k),
             WindSea::PiersonMoskowitz(p) => p.density(w),
             WindSea::Jonswap(j) => j.density(w),
             WindSea::Tma(t) => t.density(w),
         };
-        s * dispersion.group_velocity(k)
+        s * dispersion.group_speed_f64(k)
     }
 
     /// Peak angular frequency (rad/s).
-    pub fn peak_omega(&self, dispersion: &OceanDispersion) -> f64 {
+    pub fn peak_omega(&self, dispersion: &Dispersion) -> f64 {
         match self {
-            WindSea::Phillips(p) => dispersion.omega(p.peak_wavenumber()),
+            WindSea::Phillips(p) => dispersion.omega_f64(p.peak_wavenumber()),
             WindSea::PiersonMoskowitz(p) => p.peak_omega(),
             WindSea::Jonswap(j) => j.peak_omega,
             WindSea::Tma(t) => t.jonswap.peak_omega,
@@ -59,7 +59,7 @@ pub struct DirectionalSpectrum {
     /// 10 m wind speed U10 (m/s), used by wind-dependent spreading.
     pub wind_speed: f64,
     /// Dispersion relation (depth).
-    pub dispersion: OceanDispersion,
+    pub dispersion: Dispersion,
     /// Optional swell added to the wind sea.
     pub swell: Option<Swell>,
 }
@@ -72,13 +72,13 @@ impl DirectionalSpectrum {
             return 0.0;
         }
         let theta = kz.atan2(kx);
-        let w = self.dispersion.omega(k);
+        let w = self.dispersion.omega_f64(k);
         let wp = self.wind_sea.peak_omega(&self.dispersion);
         let mut f = self.wind_sea.density_k(k, &self.dispersion)
             * self.spreading.density(theta - self.wind_direction, w, wp, self.wind_speed);
         if let Some(s) = &self.swell {
             f += s.density(w)
-                * self.dispersion.group_velocity(k)
+                * self.dispersion.group_speed_f64(k)
                 * s.spreading.density(theta - s.direction, w, s.peak_omega(), self.wind_speed);
         }
         f / k
@@ -88,11 +88,11 @@ impl DirectionalSpectrum {
     /// peak density is higher).
     pub fn peak_period(&self) -> f64 {
         let wp = self.wind_sea.peak_omega(&self.dispersion);
-        let mut best = (self.wind_sea.density_k(self.dispersion.wavenumber(wp), &self.dispersion), wp);
+        let mut best = (self.wind_sea.density_k(self.dispersion.wavenumber_f64(wp), &self.dispersion), wp);
         if let Some(s) = &self.swell {
             let ws = s.peak_omega();
-            let k = self.dispersion.wavenumber(ws);
-            let ds = s.density(ws) * self.dispersion.group_velocity(k);
+            let k = self.dispersion.wavenumber_f64(ws);
+            let ds = s.density(ws) * self.dispersion.group_speed_f64(k);
             if ds > best.0 {
                 best = (ds, ws);
             }
@@ -132,7 +132,7 @@ mod tests {
                 spreading,
                 wind_direction: 0.7,
                 wind_speed: 10.0,
-                dispersion: OceanDispersion::DEEP,
+                dispersion: Dispersion::Deep,
                 swell: None,
             };
             let v = variance(&s, 4.0);

@@ -15,14 +15,21 @@
 //! `L^2 = sigma / (rho g)` (L = 2.7 mm, the capillary length), so swell uses the explicit sigma/rho
 //! form of paper 000.
 //!
-//! Everything is computed in `f64` and returned as `f32` (the FFT ocean and the Gerstner models need
-//! `w` to 1e-7 relative so that phases `w t` stay accurate over minutes).
+//! Everything is computed in `f64`. The `f32` methods serve the wave models that evaluate per
+//! vertex; the `_f64` ones ([`Dispersion::omega_f64`], [`Dispersion::group_speed_f64`],
+//! [`Dispersion::wavenumber_f64`]) serve the spectra and the FFT ocean, which set up in f64 (phases
+//! `w t` must stay accurate to 1e-7 relative over minutes, and a spectrum's integral needs `dw/dk`
+//! and the inverse `k(w)`).
 
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
 use crate::error::{check_positive, Result};
 use crate::GRAVITY;
+
+/// Beyond this `k D`, `tanh(k D)` equals 1 to f64 precision; the f64 methods use the deep-water
+/// formulas there.
+const DEEP_KD: f64 = 20.0;
 
 /// Surface tension of clean water against air at about 20 °C, in N/m (paper 000 §1.2.2, paper 003).
 pub const SURFACE_TENSION: f32 = 0.074;
@@ -117,6 +124,91 @@ impl Dispersion {
         ((f + k * df) / (2.0 * (k * f).sqrt())) as f32
     }
 
+    /// Deep water (`None`) or water of depth D m (`Some(D)`, > 0): the relations a spectral ocean
+    /// uses (no capillarity: it matters only below ~2 cm wavelengths, shorter than any ocean cell).
+    pub fn for_depth(depth: Option<f32>) -> Self {
+        match depth {
+            Some(depth) => Dispersion::FiniteDepth { depth },
+            None => Dispersion::Deep,
+        }
+    }
+
+    /// Angular frequency w (rad/s) of wavenumber k (rad/m, >= 0), in f64.
+    ///
+    /// Beyond `k D` = [`DEEP_KD`] `tanh(k D)` is 1 to f64 precision and the deep-water form is used.
+    pub fn omega_f64(&self, k: f64) -> f64 {
+        let g = f64::from(GRAVITY);
+        match *self {
+            Dispersion::Deep => (g * k).sqrt(),
+            Dispersion::FiniteDepth { depth } => {
+                let d = f64::from(depth);
+                if k * d < DEEP_KD {
+                    (g * k * (k * d).tanh()).sqrt()
+                } else {
+                    (g * k).sqrt()
+                }
+            }
+            Dispersion::Capillary { .. } => (k.max(0.0) * self.omega_squared_over_k(k.max(0.0)).0).sqrt(),
+        }
+    }
+
+    /// Group speed `dw/dk` (m/s) at wavenumber k (rad/m, > 0), in f64.
+    ///
+    /// Differentiating `w² = g k tanh(kD)`: `2 w dw/dk = g (tanh(kD) + kD sech²(kD))`.
+    pub fn group_speed_f64(&self, k: f64) -> f64 {
+        let g = f64::from(GRAVITY);
+        match *self {
+            Dispersion::FiniteDepth { depth } if k * f64::from(depth) < DEEP_KD => {
+                let kd = k * f64::from(depth);
+                let sech = 1.0 / kd.cosh();
+                g * (kd.tanh() + kd * sech * sech) / (2.0 * self.omega_f64(k))
+            }
+            Dispersion::Deep | Dispersion::FiniteDepth { .. } => 0.5 * (g / k).sqrt(),
+            Dispersion::Capillary { .. } => {
+                let (f, df) = self.omega_squared_over_k(k);
+                (f + k * df) / (2.0 * (k * f).sqrt())
+            }
+        }
+    }
+
+    /// Wavenumber k (rad/m) of angular frequency w (rad/s, >= 0): the inverse of
+    /// [`Dispersion::omega_f64`].
+    ///
+    /// Newton's method on `w²(k) - w² = 0`, started from the larger of the deep and shallow
+    /// gravity-wave limits (`w²/g` and `w/sqrt(gD)`), which lies at or above the root (capillarity
+    /// only raises w(k)). `w²(k)` increases with k; where it is convex (capillarity) the iterates
+    /// decrease monotonically to the root, where it is concave (gravity, finite depth) the first
+    /// step lands at or below the root and the iterates then increase monotonically to it.
+    pub fn wavenumber_f64(&self, omega: f64) -> f64 {
+        let g = f64::from(GRAVITY);
+        let deep = omega * omega / g;
+        let d = match *self {
+            Dispersion::Deep => return deep,
+            Dispersion::FiniteDepth { depth } => f64::from(depth),
+            Dispersion::Capillary { depth } => f64::from(depth),
+        };
+        let gravity_only = matches!(self, Dispersion::FiniteDepth { .. });
+        if omega <= 0.0 || (gravity_only && deep * d >= DEEP_KD) {
+            return deep;
+        }
+        let mut k = deep.max(omega / (g * d).sqrt());
+        for _ in 0..50 {
+            let (f, df) = if gravity_only {
+                let t = (k * d).tanh();
+                (g * k * t - omega * omega, g * (t + k * d * (1.0 - t * t)))
+            } else {
+                let (a, da) = self.omega_squared_over_k(k);
+                (k * a - omega * omega, a + k * da)
+            };
+            let step = f / df;
+            k -= step;
+            if step.abs() <= 1e-14 * k {
+                break;
+            }
+        }
+        k
+    }
+
     /// Period (s) of a wave of length `wavelength` (m, > 0).
     pub fn period_of_wavelength(&self, wavelength: f32) -> f32 {
         (TAU / f64::from(self.omega((TAU / f64::from(wavelength)) as f32))) as f32
@@ -200,5 +292,36 @@ mod tests {
     fn bad_depths_are_refused_with_the_key() {
         let e = Dispersion::FiniteDepth { depth: -1.0 }.validate("water.dispersion").unwrap_err();
         assert_eq!(e.to_string(), "water.dispersion.depth = -1 is outside (0, inf)");
+    }
+
+    #[test]
+    fn wavenumber_inverts_omega_and_group_speed_is_its_derivative() {
+        for disp in [
+            Dispersion::Deep,
+            Dispersion::FiniteDepth { depth: 0.5 },
+            Dispersion::FiniteDepth { depth: 5.0 },
+            Dispersion::FiniteDepth { depth: 200.0 },
+            Dispersion::Capillary { depth: 3.0 },
+        ] {
+            for k in [0.001, 0.02, 0.3, 1.0, 7.0, 400.0] {
+                let w = disp.omega_f64(k);
+                assert!((disp.wavenumber_f64(w) - k).abs() < 1e-9 * k.max(1.0), "{disp:?} {k}");
+                let h = 1e-6 * k;
+                let fd = (disp.omega_f64(k + h) - disp.omega_f64(k - h)) / (2.0 * h);
+                assert!((disp.group_speed_f64(k) - fd).abs() < 1e-6 * fd, "{disp:?} {k}");
+                // The f64 and f32 forms agree.
+                assert!((f64::from(disp.omega(k as f32)) - w).abs() <= 1e-6 * w, "{disp:?} {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn shallow_water_waves_travel_at_sqrt_g_d() {
+        let d = 2.0;
+        let disp = Dispersion::for_depth(Some(d));
+        let k = 1e-4;
+        let g = f64::from(GRAVITY);
+        assert!((disp.omega_f64(k) / k - (g * f64::from(d)).sqrt()).abs() < 1e-6);
+        assert_eq!(Dispersion::for_depth(None), Dispersion::Deep);
     }
 }

@@ -22,7 +22,6 @@ mod dispersion;
 pub use dispersion::{quantize_to_period, Dispersion, SURFACE_TENSION, WATER_DENSITY};
 mod directional;
 mod jonswap;
-mod ocean_dispersion;
 mod phillips;
 mod pierson_moskowitz;
 mod spreading;
@@ -31,7 +30,6 @@ mod tma;
 
 pub use directional::{DirectionalSpectrum, WindSea};
 pub use jonswap::{Jonswap, JONSWAP_GAMMA, JONSWAP_SIGMA_ABOVE, JONSWAP_SIGMA_BELOW};
-pub use ocean_dispersion::OceanDispersion;
 pub use phillips::{Phillips, PHILLIPS_ALPHA};
 pub use pierson_moskowitz::{u19_5_from_u10, PiersonMoskowitz, PM_ALPHA, PM_BETA};
 pub use spreading::Spreading;

@@ -31,6 +31,17 @@ pub enum Spreading {
     /// cos-2s with a fixed exponent s (>= 0), e.g. for swell, which is narrow in direction.
     #[serde(skip)]
     Cos2s(f64),
+    /// Blender's Ocean modifier alignment (`[water.blender]`): `|cos θ|^exponent`, times `against`
+    /// (in [0, 1]) where the wave runs against the wind (cos θ < 0), normalised over the circle
+    /// with `∫ |cos θ|^p dθ = 2 sqrt(π) Γ((p+1)/2) / Γ(p/2+1)` (Gradshteyn and Ryzhik 3.621.5).
+    /// Blender does not normalise; swell does, so alignment never changes the sea's energy.
+    #[serde(skip)]
+    CosPower {
+        /// p >= 0; 0 spreads waves evenly over every direction.
+        exponent: f64,
+        /// Factor in [0, 1] on the half-plane against the wind.
+        against: f64,
+    },
 }
 
 impl Spreading {
@@ -72,6 +83,18 @@ impl Spreading {
                 beta / (2.0 * (beta * PI).tanh()) * sech * sech
             }
             Spreading::Cos2s(s) => cos_2s(theta, s),
+            Spreading::CosPower { exponent: p, against } => {
+                let c = theta.cos();
+                let ln_circle = (4.0 * PI).ln() / 2.0 + ln_gamma((p + 1.0) / 2.0) - ln_gamma(p / 2.0 + 1.0);
+                let norm = ln_circle.exp() * (1.0 + against) / 2.0;
+                // powf(0, 0) = 1: with p = 0 every direction, the crosswind included, counts alike.
+                let d = c.abs().powf(p) / norm;
+                if c < 0.0 {
+                    d * against
+                } else {
+                    d
+                }
+            }
         }
     }
 }
@@ -133,7 +156,15 @@ mod tests {
     #[test]
     fn every_spreading_integrates_to_one() {
         let wp = 0.8;
-        for spreading in [Spreading::Cos2, Spreading::Mitsuyasu, Spreading::DonelanBanner, Spreading::Cos2s(25.0)] {
+        for spreading in [
+            Spreading::Cos2,
+            Spreading::Mitsuyasu,
+            Spreading::DonelanBanner,
+            Spreading::Cos2s(25.0),
+            Spreading::CosPower { exponent: 0.0, against: 1.0 },
+            Spreading::CosPower { exponent: 2.0, against: 0.25 },
+            Spreading::CosPower { exponent: 37.0, against: 0.0 },
+        ] {
             for r in [0.3, 0.7, 0.95, 1.0, 1.3, 2.0, 4.0] {
                 let total = integral(|t| spreading.density(t, r * wp, wp, 10.0));
                 // 1e-5: cos-2s with small s has an infinite slope at θ = ±π, which slows the quadrature.

@@ -13,7 +13,7 @@
 //! `w_h = w sqrt(D/g)`. φ is 1 in deep water and tends to `(w_h²)/2` in very shallow water.
 
 use super::jonswap::Jonswap;
-use super::ocean_dispersion::OceanDispersion;
+use super::Dispersion;
 
 /// The TMA spectrum: a JONSWAP sea over water of a given depth.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,8 +25,10 @@ pub struct Tma {
 }
 
 /// Kitaigorodskii's depth factor φ(w, D) in [0, 1] for angular frequency w (rad/s) and depth D (m).
+///
+/// The dispersion relation takes the depth as f32 (as scene files give it); depths are f32 values.
 pub fn tma_depth_factor(omega: f64, depth: f64) -> f64 {
-    let k = OceanDispersion { depth: Some(depth) }.wavenumber(omega);
+    let k = Dispersion::FiniteDepth { depth: depth as f32 }.wavenumber_f64(omega);
     let kd = k * depth;
     if kd > 20.0 {
         return 1.0;
@@ -53,11 +55,11 @@ mod tests {
     #[test]
     fn the_depth_factor_matches_its_definition_by_differentiation() {
         for depth in [1.0, 4.0, 30.0] {
-            let disp = OceanDispersion { depth: Some(depth) };
+            let disp = Dispersion::FiniteDepth { depth: depth as f32 };
             for w in [0.3, 0.8, 1.5, 3.0] {
                 let h = 1e-5 * w;
-                let k = disp.wavenumber(w);
-                let dk = (disp.wavenumber(w + h) - disp.wavenumber(w - h)) / (2.0 * h);
+                let k = disp.wavenumber_f64(w);
+                let dk = (disp.wavenumber_f64(w + h) - disp.wavenumber_f64(w - h)) / (2.0 * h);
                 let kinf = w * w / G;
                 let want = (dk / (k * k * k)) / ((2.0 * w / G) / (kinf * kinf * kinf));
                 assert!((tma_depth_factor(w, depth) - want).abs() < 1e-6, "D {depth} w {w}");

@@ -18,6 +18,7 @@
 //!
 //! The synthesis itself (layout, packing, sign conventions) is documented in `fft_ocean/cascade.rs`.
 
+mod blender;
 mod cascade;
 mod params;
 
@@ -27,6 +28,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use serde::Serialize;
 
+pub use self::blender::{BlenderOcean, BlenderSpectrum, BLENDER_RESOLUTION_RANGE};
 use self::cascade::{Cascade, CascadeSetup, PAIR_DZZ_DXZ, PAIR_HZ_DXX, PAIR_H_DX};
 pub use self::params::{FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE, MAX_CASCADES};
 use super::foam::FoamField;
@@ -93,8 +95,13 @@ impl FftOcean {
     /// Validates `params`, builds the spectrum and the cascades and synthesises time 0.
     ///
     /// Setup costs O(cascades N²) spectrum evaluations and allocates every buffer the steps use.
+    ///
+    /// With `[water.blender]` the Blender keys are mapped onto swell's ([`FftOceanParams::resolved`])
+    /// and, as Blender does, every field is scaled so that the largest |height| at t = 0 is
+    /// `wave_scale` metres.
     pub fn new(params: &FftOceanParams) -> Result<Self> {
         params.validate("water")?;
+        let params = &params.resolved();
         let spectrum = params.spectrum();
         let n = params.grid as usize;
         let count = params.cascades as usize;
@@ -126,7 +133,27 @@ impl FftOcean {
             stage_times: StageTimes::default(),
         };
         ocean.step(0.0);
+        if let Some(b) = &params.blender {
+            ocean.normalise_max_height(b.wave_scale);
+        }
         Ok(ocean)
+    }
+
+    /// Scales every cascade's amplitudes so that the largest |height| on the first cascade's grid
+    /// at t = 0 (the others sampled there) is `max_height` m, and re-synthesises t = 0. Blender's
+    /// "normalise factor"; a flat sea stays flat.
+    fn normalise_max_height(&mut self, max_height: f32) {
+        let state = self.sea_state();
+        let highest = state.max_height.max(-state.min_height);
+        if !(highest > 0.0 && highest.is_finite()) {
+            return;
+        }
+        let factor = f64::from(max_height) / highest;
+        for c in &mut self.cascades {
+            c.scale_amplitudes(factor);
+        }
+        self.foam = FoamField::new(self.foam.n, self.foam.threshold, self.foam.fade);
+        self.step(0.0);
     }
 
     /// The parameters, as validated.

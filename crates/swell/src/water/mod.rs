@@ -21,6 +21,7 @@ mod wave_model;
 mod wave_set;
 
 pub use airy::{Airy, AiryParams, AiryWave, MAX_AIRY_WAVES};
+pub use fft_ocean::{BlenderOcean, BlenderSpectrum, BLENDER_RESOLUTION_RANGE};
 pub use fft_ocean::{
     FftOcean, FftOceanParams, SeaState, SpectrumKind, StageTimes, SwellParams, CASCADE_SCALE, FFT_GRID_RANGE,
     MAX_CASCADES,

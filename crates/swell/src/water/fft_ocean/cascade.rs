@@ -71,8 +71,8 @@ pub(super) struct Cascade {
     cycles: Vec<f64>,
     /// `h(k, t)` of the last step; same layout.
     ht: Vec<Complex32>,
-    /// Column pass output, `[kx index][z]`, rows `n + WORK_ROW_PADDING` long.
-    work: Vec<Complex32>,
+    /// Column pass output of each field pair, `[kx index][z]`, rows `n + WORK_ROW_PADDING` long.
+    work: [Vec<Complex32>; 4],
     /// The four packed field pairs, `[z][x]`: sample (i, j) sits at local (i L/N, j L/N).
     pub fields: [Vec<Complex32>; 4],
     /// kz (rad/m) of each column index.
@@ -168,7 +168,7 @@ impl Cascade {
                     }
                     row.0.push(amp);
                     row.1.push(mirror);
-                    let w = s.spectrum.dispersion.omega(kx.hypot(kz));
+                    let w = s.spectrum.dispersion.omega_f64(kx.hypot(kz));
                     row.2.push(match s.loop_period {
                         // Paper 003 eq. 10: w = floor(w T / 2π) 2π / T, so every wave repeats after T.
                         Some(t) => (w * t / TAU).floor() / t,
@@ -200,13 +200,22 @@ impl Cascade {
             h0_mirror,
             cycles,
             ht: vec![Complex32::default(); half * n],
-            work: vec![Complex32::default(); n * (n + WORK_ROW_PADDING)],
+            work: std::array::from_fn(|_| vec![Complex32::default(); n * (n + WORK_ROW_PADDING)]),
             fields: [zero(), zero(), zero(), zero()],
             wavenumbers: (0..n).map(|i| signed_index(i, n) as f32 * dk as f32).collect(),
             choppiness: s.choppiness,
             fft,
             scratch,
         }
+    }
+
+    /// Multiplies every amplitude by `factor` (>= 0), and the expected variance by its square.
+    pub fn scale_amplitudes(&mut self, factor: f64) {
+        let f = factor as f32;
+        for v in self.h0.iter_mut().chain(self.h0_mirror.iter_mut()) {
+            *v *= f;
+        }
+        self.variance *= factor * factor;
     }
 
     /// Step 1: `h(k, t)` for the stored half spectrum.
@@ -230,83 +239,77 @@ impl Cascade {
             });
     }
 
-    /// Step 2: the four packed inverse transforms, into [`Cascade::fields`].
+    /// Step 2: the four packed inverse transforms, into [`Cascade::fields`]: one parallel pass of
+    /// column transforms for all four pairs, then one of row transforms (two meetings of the
+    /// threads per step instead of eight, and each row of `h(k, t)` is read once for all pairs).
     pub fn synthesize(&mut self) {
-        for pair in 0..4 {
-            self.column_pass(pair);
-            self.row_pass(pair);
-        }
+        self.column_passes();
+        self.row_passes();
     }
 
-    /// Fills `[kx][kz]` rows with the spectrum of one field pair and transforms each over kz.
-    fn column_pass(&mut self, pair: usize) {
-        match pair {
-            PAIR_H_DX => self.column_pass_for::<PAIR_H_DX>(),
-            PAIR_DZ_HX => self.column_pass_for::<PAIR_DZ_HX>(),
-            PAIR_HZ_DXX => self.column_pass_for::<PAIR_HZ_DXX>(),
-            _ => self.column_pass_for::<PAIR_DZZ_DXZ>(),
-        }
-    }
-
-    /// [`Cascade::column_pass`] with the pair known at compile time, so the inner loop is
-    /// branch-free and vectorises.
-    fn column_pass_for<const PAIR: usize>(&mut self) {
+    /// Fills `[kx][kz]` rows with the spectrum of each field pair and transforms each over kz.
+    fn column_passes(&mut self) {
         let n = self.n;
-        let half = n / 2;
         let stride = n + WORK_ROW_PADDING;
         let rows = ROWS_PER_TASK.min(n);
         let (ht, kk, lambda, fft) = (&self.ht, &self.wavenumbers, self.choppiness, &self.fft);
-        self.work.par_chunks_mut(rows * stride).zip(self.scratch.par_iter_mut()).enumerate().for_each(
-            |(task, (block, scratch))| {
-                for (r, padded) in block.chunks_exact_mut(stride).enumerate() {
-                    let row = &mut padded[..n];
+        let [w0, w1, w2, w3] = &mut self.work;
+        let chunk = rows * stride;
+        w0.par_chunks_mut(chunk)
+            .zip(w1.par_chunks_mut(chunk))
+            .zip(w2.par_chunks_mut(chunk))
+            .zip(w3.par_chunks_mut(chunk))
+            .zip(self.scratch.par_iter_mut())
+            .enumerate()
+            .for_each(|(task, ((((b0, b1), b2), b3), scratch))| {
+                for r in 0..rows {
                     let a = task * rows + r;
-                    let kx = kk[a];
-                    let m = |b: usize| pair_multiplier::<PAIR>(kx, kk[b], lambda);
-                    if a < half {
-                        for (b, (out, h)) in row.iter_mut().zip(&ht[a * n..(a + 1) * n]).enumerate() {
-                            *out = *h * m(b);
-                        }
-                    } else if a == half {
-                        row.fill(Complex32::default());
-                    } else {
-                        // Row -kx is the mirror of row kx: h(-k) = conj(h(k)), column -kz.
-                        let src = &ht[(n - a) * n..(n - a + 1) * n];
-                        row[0] = src[0].conj() * m(0);
-                        for (b, (out, h)) in row[1..].iter_mut().zip(src[1..].iter().rev()).enumerate() {
-                            *out = h.conj() * m(b + 1);
-                        }
+                    let row = r * stride..r * stride + n;
+                    let spec = RowSpec { a, n, ht, kk, lambda };
+                    fill_row::<PAIR_H_DX>(&mut b0[row.clone()], &spec);
+                    fill_row::<PAIR_DZ_HX>(&mut b1[row.clone()], &spec);
+                    fill_row::<PAIR_HZ_DXX>(&mut b2[row.clone()], &spec);
+                    fill_row::<PAIR_DZZ_DXZ>(&mut b3[row.clone()], &spec);
+                    for b in [&mut *b0, &mut *b1, &mut *b2, &mut *b3] {
+                        fft.process_with_scratch(&mut b[row.clone()], scratch);
                     }
-                    fft.process_with_scratch(row, scratch);
                 }
-            },
-        );
+            });
     }
 
-    /// Transposes `[kx][z]` to `[z][kx]` block by block and transforms each row over kx.
-    fn row_pass(&mut self, pair: usize) {
+    /// Transposes `[kx][z]` to `[z][kx]` block by block and transforms each row over kx, for the
+    /// four pairs in one parallel pass.
+    fn row_passes(&mut self) {
         let n = self.n;
         let stride = n + WORK_ROW_PADDING;
         let rows = ROWS_PER_TASK.min(n);
         let (work, fft) = (&self.work, &self.fft);
-        self.fields[pair].par_chunks_mut(rows * n).zip(self.scratch.par_iter_mut()).enumerate().for_each(
-            |(task, (block, scratch))| {
+        let [f0, f1, f2, f3] = &mut self.fields;
+        let chunk = rows * n;
+        f0.par_chunks_mut(chunk)
+            .zip(f1.par_chunks_mut(chunk))
+            .zip(f2.par_chunks_mut(chunk))
+            .zip(f3.par_chunks_mut(chunk))
+            .zip(self.scratch.par_iter_mut())
+            .enumerate()
+            .for_each(|(task, ((((o0, o1), o2), o3), scratch))| {
                 let z0 = task * rows;
-                // Tiles of TILE kx by `rows` z: the tile's source lines (TILE rows of `work`,
-                // rows * 8 bytes each) stay in L1 while the writes run along the output rows.
-                const TILE: usize = 64;
-                for a0 in (0..n).step_by(TILE) {
-                    let a1 = (a0 + TILE).min(n);
-                    let src_rows = &work[a0 * stride..a1 * stride];
-                    for (r, row) in block.chunks_exact_mut(n).enumerate() {
-                        for (out, src) in row[a0..a1].iter_mut().zip(src_rows.chunks_exact(stride)) {
-                            *out = src[z0 + r];
+                for (block, src) in [(o0, &work[0]), (o1, &work[1]), (o2, &work[2]), (o3, &work[3])] {
+                    // Tiles of TILE kx by `rows` z: the tile's source lines (TILE rows of `work`,
+                    // rows * 8 bytes each) stay in L1 while the writes run along the output rows.
+                    const TILE: usize = 64;
+                    for a0 in (0..n).step_by(TILE) {
+                        let a1 = (a0 + TILE).min(n);
+                        let src_rows = &src[a0 * stride..a1 * stride];
+                        for (r, row) in block.chunks_exact_mut(n).enumerate() {
+                            for (out, s) in row[a0..a1].iter_mut().zip(src_rows.chunks_exact(stride)) {
+                                *out = s[z0 + r];
+                            }
                         }
                     }
+                    fft.process_with_scratch(block, scratch);
                 }
-                fft.process_with_scratch(block, scratch);
-            },
-        );
+            });
     }
 
     /// Wave-vector integers and the evolution data of stored entry `idx` (tests and point queries).
@@ -330,6 +333,40 @@ impl Cascade {
             Complex32::default()
         } else {
             self.ht[(self.n - a) * self.n + (self.n - b) % self.n].conj()
+        }
+    }
+}
+
+/// What [`fill_row`] reads: row `a` (kx index) of an n x n spectrum built from the stored half
+/// spectrum `ht`, with the wavenumbers `kk` and the choppiness.
+struct RowSpec<'a> {
+    a: usize,
+    n: usize,
+    ht: &'a [Complex32],
+    kk: &'a [f32],
+    lambda: f32,
+}
+
+/// Writes row `a` of field pair `PAIR`'s packed spectrum into `row` (n values): the pair's
+/// multiplier times `h(k, t)`, with rows of negative kx taken from their mirrors.
+#[inline(always)]
+fn fill_row<const PAIR: usize>(row: &mut [Complex32], s: &RowSpec) {
+    let (a, n, ht) = (s.a, s.n, s.ht);
+    let half = n / 2;
+    let kx = s.kk[a];
+    let m = |b: usize| pair_multiplier::<PAIR>(kx, s.kk[b], s.lambda);
+    if a < half {
+        for (b, (out, h)) in row.iter_mut().zip(&ht[a * n..(a + 1) * n]).enumerate() {
+            *out = *h * m(b);
+        }
+    } else if a == half {
+        row.fill(Complex32::default());
+    } else {
+        // Row -kx is the mirror of row kx: h(-k) = conj(h(k)), column -kz.
+        let src = &ht[(n - a) * n..(n - a + 1) * n];
+        row[0] = src[0].conj() * m(0);
+        for (b, (out, h)) in row[1..].iter_mut().zip(src[1..].iter().rev()).enumerate() {
+            *out = h.conj() * m(b + 1);
         }
     }
 }

@@ -2,9 +2,10 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::blender::{check_not_both, BlenderOcean};
 use crate::error::{check_count, check_range, Error, Result};
 use crate::spectrum::{
-    DirectionalSpectrum, Jonswap, OceanDispersion, Phillips, PiersonMoskowitz, Spreading, Swell, Tma, WindSea,
+    DirectionalSpectrum, Dispersion, Jonswap, Phillips, PiersonMoskowitz, Spreading, Swell, Tma, WindSea,
 };
 
 /// Smallest and largest FFT grid side.
@@ -94,6 +95,10 @@ pub struct FftOceanParams {
     /// Optional swell.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub swell: Option<SwellParams>,
+    /// Optional `[water.blender]`: the sea given by Blender's Ocean modifier keys (see
+    /// [`BlenderOcean`]); it replaces the sea keys above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blender: Option<BlenderOcean>,
 }
 
 impl Default for FftOceanParams {
@@ -117,6 +122,7 @@ impl Default for FftOceanParams {
             foam_threshold: 0.75,
             foam_fade_s: 2.0,
             swell: None,
+            blender: None,
         }
     }
 }
@@ -139,7 +145,7 @@ impl FftOceanParams {
             return Err(Error::invalid(k("depth"), "spectrum = \"tma\" needs the water depth in metres (depth = ...)"));
         }
         check_range(&k("choppiness"), self.choppiness, 0.0, 2.0)?;
-        if let Spreading::Cos2s(_) = self.spreading {
+        if let Spreading::Cos2s(_) | Spreading::CosPower { .. } = self.spreading {
             return Err(Error::invalid(k("spreading"), format!("valid: {}", Spreading::NAMES.join(", "))));
         }
         check_range(&k("gamma"), self.gamma, 1.0, 10.0)?;
@@ -156,7 +162,20 @@ impl FftOceanParams {
             check_range(&k("swell.direction_deg"), s.direction_deg, -360.0, 360.0)?;
             check_range(&k("swell.spread"), s.spread, 0.0, 200.0)?;
         }
+        if let Some(b) = &self.blender {
+            b.validate(&k("blender"))?;
+            check_not_both(self, key)?;
+        }
         Ok(())
+    }
+
+    /// The parameters the sea is built from: these, or with `[water.blender]` the Blender keys
+    /// mapped onto swell's ([`BlenderOcean::apply`]). Assumes `self` is valid.
+    pub fn resolved(&self) -> FftOceanParams {
+        match &self.blender {
+            Some(b) => b.apply(self),
+            None => self.clone(),
+        }
     }
 
     /// The directional spectrum these parameters describe (km and degrees converted to SI here).
@@ -181,7 +200,7 @@ impl FftOceanParams {
             spreading: self.spreading,
             wind_direction: f64::from(self.wind_direction_deg).to_radians(),
             wind_speed: u10,
-            dispersion: OceanDispersion { depth },
+            dispersion: Dispersion::for_depth(self.depth),
             swell: self.swell.map(|s| {
                 Swell::new(
                     f64::from(s.height),

@@ -332,3 +332,144 @@ fn an_aligned_mesh_reads_the_samples_the_bilinear_path_would_interpolate() {
     let off = GridSpec::new(Vec2::new(-6.3, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
     assert_eq!(o.aligned_index(&off), None);
 }
+
+mod blender {
+    use super::*;
+    use crate::scene::Scene;
+
+    fn blender_params(b: BlenderOcean) -> FftOceanParams {
+        FftOceanParams { blender: Some(b), ..FftOceanParams::default() }
+    }
+
+    #[test]
+    fn resolution_squared_is_rounded_up_to_a_power_of_two() {
+        for (res, grid) in [(4, 16), (5, 32), (7, 64), (10, 128), (16, 256), (45, 2048)] {
+            let b = BlenderOcean { resolution: res, ..BlenderOcean::default() };
+            assert_eq!(b.grid(), grid, "resolution {res}");
+            assert!(b.grid() >= res * res);
+        }
+    }
+
+    #[test]
+    fn wave_scale_sets_the_largest_height_at_time_zero_and_scales_every_field() {
+        let base = BlenderOcean { resolution: 6, spatial_size: 80.0, wave_alignment: 0.4, ..BlenderOcean::default() };
+        let one = ocean(&blender_params(base.clone()));
+        let st = one.sea_state();
+        assert!((st.max_height.max(-st.min_height) - 1.0).abs() < 1e-5, "{st:?}");
+        let three = ocean(&blender_params(BlenderOcean { wave_scale: 3.0, ..base.clone() }));
+        let st3 = three.sea_state();
+        assert!((st3.max_height.max(-st3.min_height) - 3.0).abs() < 3e-5, "{st3:?}");
+        assert!((st3.hs_expected / st.hs_expected - 3.0).abs() < 1e-6);
+        // Every field (height, displacements, slopes, Jacobian terms) scales by the same factor.
+        for (x, z) in [(3.0, 7.0), (41.5, 12.25), (70.0, 66.0)] {
+            let (a, b) = (one.fields_at(x, z), three.fields_at(x, z));
+            for (fa, fb) in a.iter().zip(b) {
+                assert!((fb - 3.0 * fa).abs() <= 1e-4 * (1.0 + fa.abs()), "{a:?} {b:?}");
+            }
+        }
+        // Zero is a flat sea, not NaN.
+        let flat = ocean(&blender_params(BlenderOcean { wave_scale: 0.0, ..base }));
+        assert!(flat.cascades[0].fields.iter().flatten().all(|c| c.re == 0.0 && c.im == 0.0));
+    }
+
+    #[test]
+    fn damping_removes_waves_against_the_wind_only_with_alignment() {
+        let energy_against = |alignment: f32, damping: f32| {
+            let b = BlenderOcean { resolution: 5, wave_alignment: alignment, damping, ..BlenderOcean::default() };
+            let s = blender_params(b).resolved().spectrum();
+            // A wave travelling straight against the wind (+X) and one with it.
+            let k = 0.3;
+            (s.density(-k, 0.0), s.density(k, 0.0))
+        };
+        let (up, down) = energy_against(0.5, 1.0);
+        assert_eq!(up, 0.0);
+        assert!(down > 0.0);
+        let (up, down) = energy_against(0.5, 0.0);
+        assert!((up - down).abs() <= 1e-12 * down);
+        // As in Blender, damping does nothing when the waves are not aligned.
+        let (up, down) = energy_against(0.0, 1.0);
+        assert!((up - down).abs() <= 1e-12 * down);
+        // Alignment narrows the spreading: crosswind waves lose energy.
+        let b = |a: f32| blender_params(BlenderOcean { wave_alignment: a, ..BlenderOcean::default() }).resolved();
+        let cross = |p: FftOceanParams| p.spectrum().density(0.0, 0.3) / p.spectrum().density(0.3, 0.0);
+        assert!(cross(b(0.2)) < 1e-3 && (cross(b(0.0)) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn blender_keys_map_onto_swells() {
+        let b = BlenderOcean {
+            resolution: 8,
+            spatial_size: 120.0,
+            spectrum: BlenderSpectrum::TexelMarsenArsloe,
+            sharpen_peak_jonswap: 0.33,
+            wind_velocity: 12.0,
+            depth: 15.0,
+            fetch_jonswap: 40.0,
+            random_seed: 9,
+            ..BlenderOcean::default()
+        };
+        let p = blender_params(b).resolved();
+        assert_eq!((p.grid, p.patch_size, p.spectrum, p.seed), (64, 120.0, SpectrumKind::Tma, 9));
+        assert_eq!((p.wind_speed, p.depth, p.fetch_km), (12.0, Some(15.0), 40.0));
+        assert!((p.gamma - 3.3).abs() < 1e-6);
+        // Blender clamps γ to [1, 6].
+        let g = |s: f32| {
+            blender_params(BlenderOcean { sharpen_peak_jonswap: s, ..BlenderOcean::default() }).resolved().gamma
+        };
+        assert_eq!((g(0.0), g(1.0)), (1.0, 6.0));
+    }
+
+    #[test]
+    fn a_blender_scene_parses_validates_and_renders_finite() {
+        let text = "version = 1\n[water]\nmodel = 'fft'\nsize = [60.0, 60.0]\ncells = [32, 32]\n\
+                    [water.blender]\nresolution = 5\nspatial_size = 60.0\nwave_scale = 1.5\nwave_alignment = 0.3\n\
+                    damping = 0.8\nchoppiness = 1.2\nwind_velocity = 20.0\ndepth = 50.0\nspectrum = 'jonswap'\n\
+                    fetch_jonswap = 80.0\nsharpen_peak_jonswap = 0.33\nseed = 4\nwave_direction_deg = 30.0\n";
+        let scene = Scene::from_toml(text, "test").unwrap();
+        let mut world = crate::scene::World::new(scene).unwrap();
+        world.update(0.7).unwrap();
+        let mut r = crate::render::Renderer::new();
+        let img = r.render_size(&world, 64, 36);
+        let mut rgba = Vec::new();
+        img.encode_rgba8(1.0, None, &mut rgba);
+        assert!(rgba.iter().any(|&v| v != rgba[0]), "a blank image");
+        let ocean = ocean(&FftOceanParams {
+            blender: Some(BlenderOcean { resolution: 5, wave_scale: 1.5, ..BlenderOcean::default() }),
+            ..FftOceanParams::default()
+        });
+        assert!(ocean.cascades[0].fields.iter().flatten().all(|c| c.re.is_finite() && c.im.is_finite()));
+    }
+
+    #[test]
+    fn bad_blender_keys_name_water_blender_and_a_clash_names_both_keys() {
+        for (key, value) in [
+            ("resolution", "3"),
+            ("resolution", "46"),
+            ("spatial_size", "0.5"),
+            ("wave_scale", "-1.0"),
+            ("wave_alignment", "11.0"),
+            ("damping", "1.5"),
+            ("choppiness", "3.0"),
+            ("wind_velocity", "0.0"),
+            ("depth", "0.0"),
+            ("fetch_jonswap", "0.0"),
+            ("sharpen_peak_jonswap", "2.0"),
+        ] {
+            let text = format!("version = 1\n[water]\nmodel = 'fft'\n[water.blender]\n{key} = {value}\n");
+            let e = Scene::from_toml(&text, "test")
+                .and_then(|s| crate::scene::World::new(s).map(|_| ()))
+                .expect_err(&format!("{key} = {value} was accepted"))
+                .to_string();
+            assert!(e.contains(&format!("water.blender.{key}")), "{key} = {value}: {e}");
+        }
+        let text = "version = 1\n[water]\nmodel = 'fft'\nwind_speed = 12.0\n[water.blender]\nwind_velocity = 20.0\n";
+        let e = Scene::from_toml(text, "test")
+            .and_then(|s| crate::scene::World::new(s).map(|_| ()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("water.wind_speed") && e.contains("water.blender.wind_velocity"), "{e}");
+        let text = "version = 1\n[water]\nmodel = 'fft'\n[water.blender]\nsize = 2.0\n";
+        let e = Scene::from_toml(text, "test").unwrap_err().to_string();
+        assert!(e.contains("size"), "{e}");
+    }
+}
