@@ -131,9 +131,13 @@ pub struct TerrainArgs {
     /// (e.g. `--set roughness=0.6 --set corners=[0,0,10,10]`); repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Output PNG; the sidecar is written beside it as `FILE.toml`.
+    /// Output file, `.png` (16-bit heightmap) or `.exr` (float32 heights in metres); the sidecar
+    /// is written beside it as `FILE.toml`.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
+    /// Output format, png or exr; default: from the --out extension.
+    #[arg(long, value_name = "FORMAT")]
+    pub format: Option<String>,
     /// Worker threads, 0 = one per core. The heightmap does not depend on it.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: u32,

@@ -132,3 +132,45 @@ fn bad_input_fails_clearly_and_writes_nothing() {
     assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains(".png"));
     assert!(files_in(dir.path()).is_empty());
 }
+
+#[test]
+fn exr_heightmaps_hold_the_same_heights_in_metres() {
+    let dir = tempfile::tempdir().unwrap();
+    let common = ["terrain", "--generator", "noise", "--size", "33", "--seed", "3", "--extent", "80x60"];
+    let run = |extra: &[&str]| {
+        let mut args = common.to_vec();
+        args.extend_from_slice(extra);
+        let out = swell(dir.path(), &args);
+        assert!(out.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&out.stderr));
+    };
+    run(&["--out", "map.png"]);
+    run(&["--out", "map.exr"]);
+    // --format wins over an extension that names no format.
+    run(&["--format", "exr", "--out", "map.bin"]);
+    assert_eq!(files_in(dir.path()), ["map.bin", "map.bin.toml", "map.exr", "map.exr.toml", "map.png", "map.png.toml"]);
+    assert_eq!(std::fs::read(dir.path().join("map.exr")).unwrap(), std::fs::read(dir.path().join("map.bin")).unwrap());
+
+    let image = exr::prelude::read_first_flat_layer_from_file(dir.path().join("map.exr")).unwrap();
+    assert_eq!((image.layer_data.size.width(), image.layer_data.size.height()), (33, 33));
+    let metres: Vec<f32> = image.layer_data.channel_data.list[0].sample_data.values_as_f32().collect();
+    let side: toml::Table = std::fs::read_to_string(dir.path().join("map.png.toml")).unwrap().parse().unwrap();
+    let (scale, offset) = (side["height_scale"].as_float().unwrap(), side["height_offset"].as_float().unwrap());
+    let grey = image::open(dir.path().join("map.png")).unwrap().to_luma16();
+    // The PNG quantises the same heights: each EXR height is within half a grey level of it.
+    for (m, g) in metres.iter().zip(grey.pixels()) {
+        let from_png = offset + scale * f64::from(g.0[0]) / 65535.0;
+        assert!((f64::from(*m) - from_png).abs() <= 0.5 * scale / 65535.0 + 1e-5, "{m} vs {from_png}");
+    }
+    // The PNG's offset is the lowest height: the EXR holds that very value.
+    let lowest = metres.iter().copied().fold(f32::INFINITY, f32::min);
+    assert_eq!(f64::from(lowest), offset);
+    let exr_side = std::fs::read_to_string(dir.path().join("map.exr.toml")).unwrap();
+    assert!(exr_side.contains("height_scale = 1.0") && exr_side.contains("extent = [80.0, 60.0]"), "{exr_side}");
+
+    // A format that disagrees with the extension is refused before anything is written.
+    let mut args = common.to_vec();
+    args.extend_from_slice(&["--format", "exr", "--out", "other.png"]);
+    let out = swell(dir.path(), &args);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("--format exr"));
+    assert!(!dir.path().join("other.png").exists());
+}

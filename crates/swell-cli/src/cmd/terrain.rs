@@ -1,7 +1,9 @@
-//! `swell terrain`: generate a terrain and write it as a 16-bit heightmap PNG plus its sidecar.
+//! `swell terrain`: generate a terrain and write it as a 16-bit heightmap PNG or a float32 EXR of
+//! heights in metres, plus its sidecar.
 
 use std::path::Path;
 
+use swell::export::write_heightmap_exr;
 use swell::scene::TerrainSpec;
 use swell::terrain::{sidecar_path, write_heightmap};
 use swell::{Error, Result};
@@ -10,11 +12,14 @@ use super::thread_pool;
 use crate::args::TerrainArgs;
 
 pub fn run(a: TerrainArgs) -> Result<()> {
-    check_output(&a.out)?;
+    let format = output_format(&a.out, a.format.as_deref())?;
     let spec = resolve(&a)?;
     let pool = thread_pool(a.threads)?;
     let field = pool.install(|| spec.build())?;
-    let sidecar = write_heightmap(&a.out, &field)?;
+    let sidecar = match format {
+        Format::Png => write_heightmap(&a.out, &field)?,
+        Format::Exr => write_heightmap_exr(&a.out, &field)?,
+    };
     let (lo, hi) = field.min_max();
     eprintln!(
         "wrote {} ({} x {} vertices over {} x {} m, heights {lo:.2}..{hi:.2} m) and {}",
@@ -84,12 +89,47 @@ fn parse_extent(s: &str) -> Result<(f32, f32)> {
     }
 }
 
-/// Checks the output before any work: a `.png` in an existing directory.
-fn check_output(out: &Path) -> Result<()> {
-    let ext = out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    if ext.as_deref() != Some("png") {
-        return Err(Error::invalid("--out", format!("{} must end in .png (a 16-bit heightmap)", out.display())));
+/// The heightmap file formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    /// 16-bit grayscale PNG, heights scaled to the full grey range (the default).
+    Png,
+    /// One-channel float32 EXR, heights in metres.
+    Exr,
+}
+
+impl Format {
+    fn parse(key: &str, s: &str) -> Result<Self> {
+        match s.to_ascii_lowercase().as_str() {
+            "png" => Ok(Self::Png),
+            "exr" => Ok(Self::Exr),
+            _ => Err(Error::invalid(key, format!("`{s}` is not a heightmap format; valid: png, exr"))),
+        }
     }
+}
+
+/// Checks the output before any work and picks its format: `--format` if given, else the
+/// extension of `--out`; the two must agree, and the directory must exist.
+fn output_format(out: &Path, format: Option<&str>) -> Result<Format> {
+    let ext = out.extension().and_then(|e| e.to_str()).and_then(|e| Format::parse("--out", e).ok());
+    let format = match (format.map(|f| Format::parse("--format", f)).transpose()?, ext) {
+        (Some(f), Some(e)) if f != e => {
+            return Err(Error::invalid(
+                "--out",
+                format!("{} does not end in .{} as --format {} asks", out.display(), name(f), name(f)),
+            ))
+        }
+        (Some(f), _) | (None, Some(f)) => f,
+        (None, None) => {
+            return Err(Error::invalid(
+                "--out",
+                format!(
+                    "{} must end in .png (16-bit heightmap) or .exr (float32 metres), or give --format",
+                    out.display()
+                ),
+            ))
+        }
+    };
     let dir = match out.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -97,5 +137,12 @@ fn check_output(out: &Path) -> Result<()> {
     if !dir.is_dir() {
         return Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())));
     }
-    Ok(())
+    Ok(format)
+}
+
+fn name(f: Format) -> &'static str {
+    match f {
+        Format::Png => "png",
+        Format::Exr => "exr",
+    }
 }

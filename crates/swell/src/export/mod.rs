@@ -8,6 +8,7 @@ mod bake_manifest;
 mod exr;
 mod frame_range;
 mod gltf;
+mod heightmap_exr;
 mod named_mesh;
 mod obj;
 
@@ -17,6 +18,7 @@ pub use bake::{model_loop_period, Bake, BakeSettings, MAX_FPS, MIN_PNG_RANGE_M, 
 pub use bake_manifest::{BakeGrid, BakeManifest, BakeMap, BakePng};
 pub use frame_range::{FrameRange, Shard, MAX_FRAME, MAX_SHARDS};
 pub use gltf::{gltf_document, write_glb, write_gltf};
+pub use heightmap_exr::write_heightmap_exr;
 pub use image_file::{write_gif, write_png, write_png_map};
 pub use named_mesh::{world_meshes, NamedMesh};
 pub use obj::{encode_obj, write_obj};
