@@ -266,10 +266,10 @@ impl Cascade {
                     let a = task * rows + r;
                     let row = r * stride..r * stride + n;
                     let spec = RowSpec { a, n, ht, kk, lambda };
-                    fill_row::<PAIR_H_DX>(&mut b0[row.clone()], &spec);
-                    fill_row::<PAIR_DZ_HX>(&mut b1[row.clone()], &spec);
-                    fill_row::<PAIR_HZ_DXX>(&mut b2[row.clone()], &spec);
-                    fill_row::<PAIR_DZZ_DXZ>(&mut b3[row.clone()], &spec);
+                    fill_rows(
+                        [&mut b0[row.clone()], &mut b1[row.clone()], &mut b2[row.clone()], &mut b3[row.clone()]],
+                        &spec,
+                    );
                     for b in [&mut *b0, &mut *b1, &mut *b2, &mut *b3] {
                         fft.process_with_scratch(&mut b[row.clone()], scratch);
                     }
@@ -347,43 +347,62 @@ struct RowSpec<'a> {
     lambda: f32,
 }
 
-/// Writes row `a` of field pair `PAIR`'s packed spectrum into `row` (n values): the pair's
-/// multiplier times `h(k, t)`, with rows of negative kx taken from their mirrors.
+/// Writes row `a` of the four field pairs' packed spectra into `out` (n values each): each pair's
+/// multiplier times `h(k, t)`, with rows of negative kx taken from their mirrors. One sweep for
+/// the four pairs, so `h` is read and `1/k` computed once per wave vector.
 #[inline(always)]
-fn fill_row<const PAIR: usize>(row: &mut [Complex32], s: &RowSpec) {
-    let (a, n, ht) = (s.a, s.n, s.ht);
+fn fill_rows(out: [&mut [Complex32]; 4], s: &RowSpec) {
+    let (a, n) = (s.a, s.n);
     let half = n / 2;
-    let kx = s.kk[a];
-    let m = |b: usize| pair_multiplier::<PAIR>(kx, s.kk[b], s.lambda);
-    if a < half {
-        for (b, (out, h)) in row.iter_mut().zip(&ht[a * n..(a + 1) * n]).enumerate() {
-            *out = *h * m(b);
+    if a == half {
+        for o in out {
+            o.fill(Complex32::default());
         }
-    } else if a == half {
-        row.fill(Complex32::default());
+        return;
+    }
+    if a < half {
+        let src = &s.ht[a * n..(a + 1) * n];
+        fill_rows_from(out, s, |b| src[b]);
     } else {
         // Row -kx is the mirror of row kx: h(-k) = conj(h(k)), column -kz.
-        let src = &ht[(n - a) * n..(n - a + 1) * n];
-        row[0] = src[0].conj() * m(0);
-        for (b, (out, h)) in row[1..].iter_mut().zip(src[1..].iter().rev()).enumerate() {
-            *out = h.conj() * m(b + 1);
-        }
+        let src = &s.ht[(n - a) * n..(n - a + 1) * n];
+        let mask = n - 1;
+        fill_rows_from(out, s, |b| src[(n - b) & mask].conj());
     }
 }
 
-/// Spectral multiplier of field pair `pair` at (kx, kz): the pair's packed spectrum is this times h.
+/// [`fill_rows`] for a row whose `h(k, t)` at column b is `h(b)`.
+#[inline(always)]
+fn fill_rows_from(out: [&mut [Complex32]; 4], s: &RowSpec, h: impl Fn(usize) -> Complex32) {
+    let [o0, o1, o2, o3] = out;
+    let n = s.n;
+    let kx = s.kk[s.a];
+    let kz = &s.kk[..n];
+    let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
+    for b in 0..n {
+        let h = h(b);
+        let m = pair_multipliers(kx, kz[b], s.lambda);
+        o0[b] = h * m[PAIR_H_DX];
+        o1[b] = h * m[PAIR_DZ_HX];
+        o2[b] = h * m[PAIR_HZ_DXX];
+        o3[b] = h * m[PAIR_DZZ_DXZ];
+    }
+}
+
+/// Spectral multipliers of the four field pairs at (kx, kz), indexed by `PAIR_*`: each pair's
+/// packed spectrum is its multiplier times h.
 ///
 /// With `A + iB` packing: (h, Dx): `1 + i (i λ kx/k)`; (Dz, hx): `i λ kz/k + i (i kx)`;
 /// (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`.
 #[inline(always)]
-fn pair_multiplier<const PAIR: usize>(kx: f32, kz: f32, lambda: f32) -> Complex32 {
+fn pair_multipliers(kx: f32, kz: f32, lambda: f32) -> [Complex32; 4] {
     let k2 = kx * kx + kz * kz;
     let inv_k = if k2 > 0.0 { 1.0 / k2.sqrt() } else { 0.0 };
     let l = lambda * inv_k;
-    match PAIR {
-        PAIR_H_DX => Complex32::new(1.0 - l * kx, 0.0),
-        PAIR_DZ_HX => Complex32::new(-kx, l * kz),
-        PAIR_HZ_DXX => Complex32::new(0.0, kz - l * kx * kx),
-        _ => Complex32::new(-l * kz * kz, -l * kx * kz),
-    }
+    [
+        Complex32::new(1.0 - l * kx, 0.0),
+        Complex32::new(-kx, l * kz),
+        Complex32::new(0.0, kz - l * kx * kx),
+        Complex32::new(-l * kz * kz, -l * kx * kz),
+    ]
 }

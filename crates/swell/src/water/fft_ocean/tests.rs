@@ -337,6 +337,10 @@ mod blender {
     use super::*;
     use crate::scene::Scene;
 
+    /// A scene header: version and a camera looking at the water.
+    const HEAD: &str = "version = 1\n[camera]\neye = [0.0, 12.0, 45.0]\ntarget = [0.0, 0.0, 0.0]\n\
+                        up = [0.0, 1.0, 0.0]\nfov_y_deg = 55.0\nnear = 0.5\nfar = 1000.0\n";
+
     fn blender_params(b: BlenderOcean) -> FftOceanParams {
         FftOceanParams { blender: Some(b), ..FftOceanParams::default() }
     }
@@ -421,11 +425,11 @@ mod blender {
 
     #[test]
     fn a_blender_scene_parses_validates_and_renders_finite() {
-        let text = "version = 1\n[water]\nmodel = 'fft'\nsize = [60.0, 60.0]\ncells = [32, 32]\n\
+        let text = "[water]\nmodel = 'fft'\nsize = [60.0, 60.0]\ncells = [32, 32]\n\
                     [water.blender]\nresolution = 5\nspatial_size = 60.0\nwave_scale = 1.5\nwave_alignment = 0.3\n\
                     damping = 0.8\nchoppiness = 1.2\nwind_velocity = 20.0\ndepth = 50.0\nspectrum = 'jonswap'\n\
                     fetch_jonswap = 80.0\nsharpen_peak_jonswap = 0.33\nseed = 4\nwave_direction_deg = 30.0\n";
-        let scene = Scene::from_toml(text, "test").unwrap();
+        let scene = Scene::from_toml(&format!("{HEAD}{text}"), "test").unwrap();
         let mut world = crate::scene::World::new(scene).unwrap();
         world.update(0.7).unwrap();
         let mut r = crate::render::Renderer::new();
@@ -455,21 +459,21 @@ mod blender {
             ("fetch_jonswap", "0.0"),
             ("sharpen_peak_jonswap", "2.0"),
         ] {
-            let text = format!("version = 1\n[water]\nmodel = 'fft'\n[water.blender]\n{key} = {value}\n");
+            let text = format!("{HEAD}[water]\nmodel = 'fft'\n[water.blender]\n{key} = {value}\n");
             let e = Scene::from_toml(&text, "test")
                 .and_then(|s| crate::scene::World::new(s).map(|_| ()))
                 .expect_err(&format!("{key} = {value} was accepted"))
                 .to_string();
             assert!(e.contains(&format!("water.blender.{key}")), "{key} = {value}: {e}");
         }
-        let text = "version = 1\n[water]\nmodel = 'fft'\nwind_speed = 12.0\n[water.blender]\nwind_velocity = 20.0\n";
-        let e = Scene::from_toml(text, "test")
+        let text = format!("{HEAD}[water]\nmodel = 'fft'\nwind_speed = 12.0\n[water.blender]\nwind_velocity = 20.0\n");
+        let e = Scene::from_toml(&text, "test")
             .and_then(|s| crate::scene::World::new(s).map(|_| ()))
             .unwrap_err()
             .to_string();
         assert!(e.contains("water.wind_speed") && e.contains("water.blender.wind_velocity"), "{e}");
-        let text = "version = 1\n[water]\nmodel = 'fft'\n[water.blender]\nsize = 2.0\n";
-        let e = Scene::from_toml(text, "test").unwrap_err().to_string();
+        let text = format!("{HEAD}[water]\nmodel = 'fft'\n[water.blender]\nsize = 2.0\n");
+        let e = Scene::from_toml(&text, "test").unwrap_err().to_string();
         assert!(e.contains("size"), "{e}");
     }
 }
