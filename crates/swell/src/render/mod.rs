@@ -1,9 +1,12 @@
 //! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer:
-//! [`sky_pass`] clears the depth, [`water_pass`] draws the water surface, [`sky_pass`] fills what
-//! is left with the sky, [`overlay_pass`] draws the wireframe and normals when asked for.
+//! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`reflection_pass`] draws it
+//! mirrored into its own image for the water to reflect, [`water_pass`] draws the water surface,
+//! [`sky_pass`] fills what is left with the sky, [`overlay_pass`] draws the wireframe and normals
+//! when asked for.
 
 mod mesh_pass;
 mod overlay_pass;
+mod reflection_pass;
 mod sky_pass;
 mod terrain_pass;
 mod water_pass;
@@ -29,6 +32,8 @@ pub struct Renderer {
     face_colors: Vec<Vec3>,
     /// The water pass's own vertex buffers (per-pixel and flat shading).
     water_scratch: water_pass::Scratch,
+    /// The mirrored terrain the water reflects, and its draw buffers.
+    reflection_scratch: reflection_pass::Scratch,
 }
 
 impl Renderer {
@@ -66,8 +71,21 @@ impl Renderer {
             clip_from_world: scene.camera.clip_from_world(width as f32 / height as f32),
         };
         sky_pass::clear_depth(fb);
+        let mut reflection = None;
         if let Some(terrain) = &world.terrain {
             terrain_pass::draw(fb, &frame, terrain, &mut self.clip_vertices, &mut self.face_colors);
+            if world.water.is_some() {
+                reflection = reflection_pass::draw(
+                    &mut self.reflection_scratch,
+                    w,
+                    h,
+                    &frame,
+                    &scene.camera,
+                    terrain,
+                    &mut self.clip_vertices,
+                    &self.face_colors,
+                );
+            }
         }
         if let Some(water) = &world.water {
             water_pass::draw(
@@ -78,6 +96,7 @@ impl Renderer {
                 &mut self.face_colors,
                 &mut self.water_scratch,
                 world.terrain.as_ref(),
+                reflection.as_ref(),
             );
         }
         // After every geometry pass: the sky fills only what they left at the far plane.

@@ -11,7 +11,7 @@ use super::FrameContext;
 use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
 use crate::scene::TerrainBody;
 use crate::scene::WaterBody;
-use crate::shading::{shade_water, FlatBottom, NoBottom, Seabed, Shading, SurfaceVarying, WaterLook};
+use crate::shading::{shade_water, FlatBottom, NoBottom, ReflectionMap, Seabed, Shading, SurfaceVarying, WaterLook};
 
 /// Vertex buffers of the models that do not interpolate a colour, kept between frames.
 #[derive(Default)]
@@ -23,7 +23,8 @@ pub struct Scratch {
     draw_surface: DrawScratch<SurfaceVarying>,
 }
 
-/// Draws `water` into `fb`, reusing `clip_vertices`, `face_colors` and `scratch`.
+/// Draws `water` into `fb`, reusing `clip_vertices`, `face_colors` and `scratch`; `terrain` is
+/// the bottom where the material sets none, `reflection` the terrain the surface mirrors.
 pub fn draw(
     fb: &mut Framebuffer,
     frame: &FrameContext,
@@ -32,6 +33,7 @@ pub fn draw(
     face_colors: &mut Vec<Vec3>,
     scratch: &mut Scratch,
     terrain: Option<&TerrainBody>,
+    reflection: Option<&ReflectionMap>,
 ) {
     let mesh = &water.mesh;
     let material = &water.material;
@@ -47,7 +49,7 @@ pub fn draw(
         (None, Some(t)) => t,
         (None, None) => &NoBottom,
     };
-    let look = WaterLook::new(material, seabed, water.texture.as_ref(), env.time);
+    let look = WaterLook::new(material, seabed, water.texture.as_ref(), env.time).with_reflection(reflection);
     let lobe = material.shading.lobe();
     let foam = |i: usize| if mesh.has_foam { mesh.foam[i] } else { 0.0 };
     let clip = |p: Vec3| clip_from_world * Vec4::from((p, 1.0));

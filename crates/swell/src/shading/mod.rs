@@ -5,6 +5,7 @@
 
 mod fresnel;
 mod lighting;
+mod reflection_map;
 mod specular;
 mod surface_varying;
 mod terrain_color;
@@ -13,6 +14,7 @@ mod water_optics;
 
 pub use fresnel::fresnel_dielectric;
 pub use lighting::{lambert, Environment};
+pub use reflection_map::ReflectionMap;
 pub use specular::{shade_opaque, specular, Lobe, OpaqueLook};
 pub use surface_varying::SurfaceVarying;
 pub use terrain_color::{shade_terrain, TerrainMaterial, TerrainShading};

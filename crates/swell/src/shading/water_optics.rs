@@ -4,7 +4,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{fresnel_dielectric, lambert, specular, Environment, Lobe, Texture};
+use super::{fresnel_dielectric, lambert, specular, Environment, Lobe, ReflectionMap, Texture};
 use crate::scene::WaterMaterial;
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
@@ -53,6 +53,8 @@ pub struct WaterLook<'a> {
     /// Texture coordinates of world (x, z) are `(x, z) / texture_scale + texture_offset` (tiles);
     /// the offset slides the texture with the flow.
     pub texture_offset: Vec2,
+    /// The terrain above the water, mirrored ([`ReflectionMap`]); `None` reflects only the sky.
+    pub reflection: Option<&'a ReflectionMap<'a>>,
 }
 
 impl<'a> WaterLook<'a> {
@@ -62,7 +64,12 @@ impl<'a> WaterLook<'a> {
         // Reduce modulo one tile in f64 so that hours of flow keep full f32 precision.
         let tiles = |v: f32| (-(v as f64) * t / material.texture_scale as f64).rem_euclid(1.0) as f32;
         let texture_offset = Vec2::new(tiles(material.flow_velocity.x), tiles(material.flow_velocity.y));
-        Self { material, seabed, texture, texture_offset }
+        Self { material, seabed, texture, texture_offset, reflection: None }
+    }
+
+    /// The same look, also reflecting the terrain of `reflection`.
+    pub fn with_reflection(self, reflection: Option<&'a ReflectionMap<'a>>) -> Self {
+        Self { reflection, ..self }
     }
 
     /// The water-body colour at world (`x`, `z`): `color`, or its blend with the texture.
@@ -97,15 +104,15 @@ const SEABED_ITERATIONS: usize = 4;
 /// Radiance leaving water point `p` (world m) with unit normal `n` towards the eye; `foam` in
 /// [0, 1] whitens it.
 ///
-/// `L = F sky(r) + (1 − F) L_t + specular + foam`, with F the exact Fresnel reflectance
-/// ([`fresnel_dielectric`]) and r the mirrored view ray, where the transmitted radiance
+/// `L = F L_r + (1 − F) L_t + specular + foam`, with F the exact Fresnel reflectance
+/// ([`fresnel_dielectric`]) and `L_r` what the mirrored view ray r sees: the terrain above the
+/// water where [`WaterLook::reflection`] has it along r, the sky elsewhere; and where the transmitted radiance
 /// `L_t = L_bottom e^(−a s) + L_body (1 − e^(−a s))` is the refracted bottom attenuated by
 /// Beer-Lambert absorption `a` (per channel, 1/m) over the underwater path s, plus light
 /// scattered by the water body (`color` lit by the lights) along it; with no bottom in sight
 /// only the body remains (deep water). The bottom is lit by the lights after their own
 /// refraction and absorption down to it. A reflected ray below the horizon would hit the water
 /// again; it is bent back to the horizon, whose colour is what such a ray would eventually see.
-/// Reflection of terrain above the water is not included.
 pub fn shade_water(env: &Environment, look: &WaterLook, lobe: Lobe, p: Vec3, n: Vec3, foam: f32) -> Vec3 {
     let m = look.material;
     let to_eye = (env.eye - p).normalize_or(Vec3::Y);
@@ -114,8 +121,14 @@ pub fn shade_water(env: &Environment, look: &WaterLook, lobe: Lobe, p: Vec3, n: 
     let cos_i = n.dot(to_eye);
     let f = fresnel_dielectric(cos_i, m.refractive_index);
     let mut reflected = (2.0 * cos_i * n - to_eye).normalize_or(Vec3::Y);
-    reflected.y = reflected.y.max(0.0);
-    let sky = env.sky_radiance(reflected.normalize_or(Vec3::Y));
+    let terrain = match look.reflection {
+        Some(map) if reflected.y > 0.0 => map.sample(p, reflected),
+        _ => None,
+    };
+    let sky = terrain.unwrap_or_else(|| {
+        reflected.y = reflected.y.max(0.0);
+        env.sky_radiance(reflected.normalize_or(Vec3::Y))
+    });
 
     let body = look.body_color(p.x, p.z) * lambert(env, p, n);
     let transmitted = match refract(-to_eye, n, 1.0 / m.refractive_index) {
