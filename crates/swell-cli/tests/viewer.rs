@@ -174,25 +174,23 @@ fn view_difference(a: &RgbaImage, b: &RgbaImage) -> f64 {
     sum as f64 / (3.0 * VIEW_W as f64 * VIEW_H as f64)
 }
 
-#[test]
-fn a_mouse_drag_turns_the_view_and_q_quits() {
-    let Some(x) = start_xvfb(&["Xvfb", "xdotool", "import"]) else { return };
-    let d = x.display.clone();
-    let dir = tempfile::tempdir().unwrap();
+/// Starts `swell view --preset PRESET` and waits until its window is mapped and at least
+/// `min_blue` of the view's lower half is water-blue; returns the process and the window id.
+fn open_viewer(d: &str, dir: &Path, preset: &str, min_blue: f64) -> (Child, String) {
     let child =
-        swell(&d).args(["view", "--preset", "sea"]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+        swell(d).args(["view", "--preset", preset]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     // Wait until the window is mapped and has drawn water.
     let deadline = Instant::now() + STARTUP;
     let window = loop {
         let found =
-            Command::new("xdotool").env("DISPLAY", &d).args(["search", "--onlyvisible", "--name", "^swell"]).output();
+            Command::new("xdotool").env("DISPLAY", d).args(["search", "--onlyvisible", "--name", "^swell"]).output();
         let id = found
             .ok()
             .filter(|o| o.status.success())
             .and_then(|o| String::from_utf8_lossy(&o.stdout).split_whitespace().next().map(str::to_owned));
-        let blue = id.as_ref().map(|_| blue_fraction(&capture(&d, &dir.path().join("probe.png"))));
+        let blue = id.as_ref().map(|_| blue_fraction(&capture(d, &dir.join("probe.png"))));
         if let (Some(id), Some(b)) = (&id, blue) {
-            if b > 0.8 {
+            if b > min_blue {
                 break id.clone();
             }
         }
@@ -202,6 +200,15 @@ fn a_mouse_drag_turns_the_view_and_q_quits() {
         );
         std::thread::sleep(Duration::from_millis(500));
     };
+    (child, window)
+}
+
+#[test]
+fn a_mouse_drag_turns_the_view_and_q_quits() {
+    let Some(x) = start_xvfb(&["Xvfb", "xdotool", "import"]) else { return };
+    let d = x.display.clone();
+    let dir = tempfile::tempdir().unwrap();
+    let (child, window) = open_viewer(&d, dir.path(), "sea", 0.8);
     // Without a window manager nobody gives the window the keyboard: do it, then pause with space
     // so that only the camera can change the picture.
     xdotool(&d, &["windowfocus", "--sync", &window]);
@@ -228,6 +235,98 @@ fn a_mouse_drag_turns_the_view_and_q_quits() {
     assert!(change > 5.0, "a 200-pixel orbit drag changed the view by only {change:.2} per channel");
     assert!(blue_fraction(&after) > 0.5, "the turned view lost the water");
 
+    xdotool(&d, &["key", "q"]);
+    let out = wait_with_timeout(child, Duration::from_secs(30));
+    assert!(out.status.success(), "viewer exit: {}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// Whether the viewer process is still running.
+fn alive(child: &mut Child) -> bool {
+    child.try_wait().expect("child status").is_none()
+}
+
+#[test]
+fn the_viewer_survives_resizing_to_nothing_minimising_and_rapid_changes() {
+    let Some(x) = start_xvfb(&["Xvfb", "xdotool", "import"]) else { return };
+    let d = x.display.clone();
+    let dir = tempfile::tempdir().unwrap();
+    let (mut child, window) = open_viewer(&d, dir.path(), "sea", 0.8);
+    xdotool(&d, &["windowfocus", "--sync", &window]);
+    // Shrink to a single pixel (X has no zero-sized windows; the view then gets 0 x 0 points
+    // beside the fixed-width panel), and try zero anyway: xdotool may refuse it, the viewer must not care.
+    xdotool(&d, &["windowsize", "--sync", &window, "1", "1"]);
+    std::thread::sleep(Duration::from_millis(800));
+    let _ = Command::new("xdotool").env("DISPLAY", &d).args(["windowsize", &window, "0", "0"]).status();
+    std::thread::sleep(Duration::from_millis(800));
+    assert!(alive(&mut child), "the viewer died at 1x1");
+    // Minimise (iconify request) and hide the window entirely, then bring it back.
+    let _ = Command::new("xdotool").env("DISPLAY", &d).args(["windowminimize", &window]).status();
+    xdotool(&d, &["windowunmap", "--sync", &window]);
+    std::thread::sleep(Duration::from_millis(800));
+    xdotool(&d, &["windowmap", "--sync", &window]);
+    assert!(alive(&mut child), "the viewer died while hidden");
+    // Rapid resizes through odd sizes, interleaved with overlay and pause keys and wheel zooms.
+    for (k, (w, h)) in
+        [(300, 200), (1, 700), (1900, 1), (733, 411), (1711, 901), (2, 2), (1700, 800)].into_iter().enumerate()
+    {
+        xdotool(&d, &["windowsize", &window, &w.to_string(), &h.to_string()]);
+        xdotool(&d, &["windowfocus", &window]);
+        xdotool(&d, &["key", "--delay", "5", "t", "n", "space", "t", "n", "space"]);
+        xdotool(
+            &d,
+            &["mousemove", "200", "200", "click", "--repeat", "5", "--delay", "5", if k % 2 == 0 { "4" } else { "5" }],
+        );
+        std::thread::sleep(Duration::from_millis(150));
+    }
+    std::thread::sleep(Duration::from_millis(2000));
+    assert!(alive(&mut child), "the viewer died during rapid resizing");
+    // Back at a normal size it still draws water.
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let b = blue_fraction(&capture(&d, &dir.path().join("back.png")));
+        if b > 0.5 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "after resizing the view shows no water (blue fraction {b})");
+        std::thread::sleep(Duration::from_millis(500));
+    }
+    xdotool(&d, &["windowfocus", "--sync", &window]);
+    xdotool(&d, &["key", "q"]);
+    let out = wait_with_timeout(child, Duration::from_secs(30));
+    assert!(out.status.success(), "viewer exit: {}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn a_click_on_the_spring_mesh_drops_a_disturbance_there() {
+    let Some(x) = start_xvfb(&["Xvfb", "xdotool", "import"]) else { return };
+    let d = x.display.clone();
+    let dir = tempfile::tempdir().unwrap();
+    let (child, window) = open_viewer(&d, dir.path(), "springs", 0.2);
+    xdotool(&d, &["windowfocus", "--sync", &window]);
+    xdotool(&d, &["mousemove", "640", "560"]);
+    xdotool(&d, &["key", "space"]);
+    std::thread::sleep(Duration::from_millis(1500));
+    let before = capture(&d, &dir.path().join("before.png"));
+    xdotool(&d, &["click", "1"]);
+    std::thread::sleep(Duration::from_millis(1500));
+    let after = capture(&d, &dir.path().join("after.png"));
+    // The dent changes pixels near the click and leaves the far corner of the view alone.
+    let region = |img: &RgbaImage, x0: u32, y0: u32| {
+        let mut v = Vec::new();
+        for y in y0..y0 + 60 {
+            for x in x0..x0 + 60 {
+                v.extend_from_slice(&img.get_pixel(x, y).0[..3]);
+            }
+        }
+        v
+    };
+    let diff = |a: &[u8], b: &[u8]| {
+        a.iter().zip(b).map(|(p, q)| (*p as i32 - *q as i32).unsigned_abs() as u64).sum::<u64>() as f64 / a.len() as f64
+    };
+    let near = diff(&region(&before, 610, 530), &region(&after, 610, 530));
+    let far = diff(&region(&before, 0, 0), &region(&after, 0, 0));
+    assert!(near > 2.0, "the click changed the water under it by only {near:.2} per channel");
+    assert!(far < 0.5, "the sky changed by {far:.2} per channel");
     xdotool(&d, &["key", "q"]);
     let out = wait_with_timeout(child, Duration::from_secs(30));
     assert!(out.status.success(), "viewer exit: {}", String::from_utf8_lossy(&out.stderr));

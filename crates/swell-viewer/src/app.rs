@@ -165,6 +165,27 @@ impl ViewerApp {
         if let Some(c) = moved.filter(|c| *c != cam) {
             self.move_camera(c);
         }
+        if response.clicked_by(PointerButton::Primary) {
+            if let Some(pos) = response.interact_pointer_pos() {
+                self.drop_at_click(response.rect, pos);
+            }
+        }
+    }
+
+    /// A click on the water drops a disturbance there (models with state: the spring mesh).
+    fn drop_at_click(&mut self, rect: Rect, pos: egui::Pos2) {
+        let cam = self.editor.scene().camera;
+        let local = pos - rect.min;
+        let Some(at) = crate::picking::water_point(&cam, rect.width(), rect.height(), local.x, local.y) else {
+            return;
+        };
+        let click = self.panels.click_drop;
+        let result = click.validate().and_then(|()| self.editor.disturb_water(at.x, at.y, click.depth, click.radius));
+        match result {
+            Ok(true) => self.run_error = None,
+            Ok(false) => {}
+            Err(e) => self.run_error = Some(e.to_string()),
+        }
     }
 
     fn handle_panel(&mut self, ctx: &egui::Context, out: PanelOutput) {
@@ -189,6 +210,12 @@ impl ViewerApp {
                     let [w, h] = self.view.size();
                     format!("saved the {w}x{h} view to {}", p.display())
                 }),
+                FileRequest::SaveHeightmap(p) => match &self.editor.world_mut().terrain {
+                    Some(t) => swell::terrain::write_heightmap(&p, &t.field).map(|s| {
+                        format!("saved the heightmap to {} ({} m per grey range)", p.display(), s.height_scale)
+                    }),
+                    None => Err(Error::invalid("terrain", "there is no terrain to save")),
+                },
                 FileRequest::SaveWindow(p) => {
                     ctx.send_viewport_cmd(ViewportCommand::Screenshot(egui::UserData::new(ScreenshotPurpose::Panel(
                         p,

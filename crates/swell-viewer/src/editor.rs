@@ -60,7 +60,8 @@ impl SceneEditor {
         if self.draft == self.world.scene {
             return Ok(());
         }
-        if self.draft.water != self.world.scene.water {
+        // Water and terrain are built into the world (the water model may need the depth below).
+        if self.draft.water != self.world.scene.water || self.draft.terrain != self.world.scene.terrain {
             let time = self.world.time();
             let mut world = World::new(self.draft.clone())?;
             world.update(time)?;
@@ -71,6 +72,20 @@ impl SceneEditor {
         }
         self.revision += 1;
         Ok(())
+    }
+
+    /// Drops a dent `depth` m deep and `radius` m wide on the water at world (x, z) (a click on the
+    /// view) and redisplaces the mesh at the current time. Returns false, changing nothing, when
+    /// there is no water or its model has no state to disturb (closed-form models).
+    pub fn disturb_water(&mut self, x: f32, z: f32, depth: f32, radius: f32) -> Result<bool> {
+        let time = self.world.time();
+        let Some(w) = &mut self.world.water else { return Ok(false) };
+        if !w.model.disturb(x, z, depth, radius)? {
+            return Ok(false);
+        }
+        self.world.update(if time.is_finite() { time } else { 0.0 })?;
+        self.revision += 1;
+        Ok(true)
     }
 
     /// Throws the draft away and shows the last valid scene again.
@@ -219,6 +234,26 @@ mod tests {
             rgba
         };
         assert_eq!(pixels(&mut e), pixels(&mut loaded));
+    }
+
+    #[test]
+    fn a_click_disturbs_the_spring_mesh_and_nothing_else() {
+        let mut e = SceneEditor::new(preset("springs").unwrap()).unwrap();
+        e.world_mut().update(1.0).unwrap();
+        let rev = e.revision();
+        let before = e.world_mut().water.as_ref().unwrap().model.height_at(2.0, -3.0, 1.0);
+        assert!(e.disturb_water(2.0, -3.0, 0.5, 1.0).unwrap());
+        assert_eq!(e.revision(), rev + 1);
+        let w = e.world_mut().water.as_ref().unwrap();
+        let after = w.model.height_at(2.0, -3.0, 1.0);
+        assert!((before - after - 0.5).abs() < 1e-3, "{before} -> {after}");
+        // The mesh shown moved too: its lowest vertex is at least the dent deep.
+        let lowest = w.mesh.positions.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+        assert!(lowest <= after + 1e-4);
+        assert!(e.disturb_water(0.0, 0.0, -1.0, 1.0).is_err());
+        let mut sea = sea();
+        assert!(!sea.disturb_water(0.0, 0.0, 0.5, 1.0).unwrap());
+        assert_eq!(sea.revision(), 0);
     }
 
     #[test]

@@ -63,6 +63,7 @@ pub mod files;
 pub mod frame_stats;
 pub mod live_view;
 pub mod panels;
+pub mod picking;
 
 use std::cell::RefCell;
 use std::path::PathBuf;

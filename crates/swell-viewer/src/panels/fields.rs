@@ -83,3 +83,54 @@ pub fn color(ui: &mut Ui, label: &str, c: &mut Vec3) -> bool {
 pub fn grid(id: &str) -> egui::Grid {
     egui::Grid::new(id).num_columns(2).spacing([8.0, 4.0])
 }
+
+/// A labelled optional number: a check box (`None` when off) and, when on, its value. Turning it on
+/// starts from `default`.
+pub fn optional_number(
+    ui: &mut Ui,
+    label: &str,
+    value: &mut Option<f32>,
+    default: f32,
+    speed: f64,
+    suffix: &str,
+) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let mut on = value.is_some();
+            let mut changed = false;
+            if ui.checkbox(&mut on, "").changed() {
+                *value = on.then_some(default);
+                changed = true;
+            }
+            if let Some(v) = value {
+                changed |= ui.add(DragValue::new(v).speed(speed).suffix(suffix).max_decimals(4)).changed();
+            }
+            changed
+        })
+        .inner;
+    ui.end_row();
+    changed
+}
+
+/// A labelled choice among `options` (value, name) in a combo box; returns whether it changed.
+pub fn choice<T: PartialEq + Copy>(ui: &mut Ui, label: &str, value: &mut T, options: &[(T, &str)]) -> bool {
+    ui.label(label);
+    let current = options.iter().find(|(v, _)| v == value).map_or("?", |(_, n)| n);
+    let mut changed = false;
+    egui::ComboBox::from_id_salt(("choice", label)).selected_text(current).show_ui(ui, |ui| {
+        for &(v, name) in options {
+            changed |= ui.selectable_value(value, v, name).changed();
+        }
+    });
+    ui.end_row();
+    changed
+}
+
+/// A labelled check box.
+pub fn flag(ui: &mut Ui, label: &str, value: &mut bool) -> bool {
+    ui.label(label);
+    let changed = ui.checkbox(value, "").changed();
+    ui.end_row();
+    changed
+}

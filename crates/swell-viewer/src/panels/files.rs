@@ -18,6 +18,8 @@ pub enum FileRequest {
     SaveView(PathBuf),
     /// Write the whole window, panel included, as PNG.
     SaveWindow(PathBuf),
+    /// Write the terrain's height field as a 16-bit grey PNG with its sidecar.
+    SaveHeightmap(PathBuf),
 }
 
 /// The outcome of the last file operation, as shown under the buttons.

@@ -18,6 +18,7 @@
 //! unit-tested without a window.
 
 pub mod camera;
+pub mod fft_ocean;
 pub mod fields;
 pub mod files;
 pub mod gerstner;
@@ -26,8 +27,12 @@ pub mod model_toml;
 pub mod render;
 pub mod sines;
 pub mod sky;
+pub mod springs;
+pub mod table_fields;
+pub mod terrain;
 pub mod time;
 pub mod water;
+pub mod wave_list;
 
 use eframe::egui::{CollapsingHeader, Ui};
 use swell::scene::Scene;
@@ -47,6 +52,10 @@ pub struct PanelState {
     pub water_message: Option<String>,
     /// File paths and the outcome of the last file operation.
     pub files: files::FilesForm,
+    /// What a click on the spring mesh drops.
+    pub click_drop: springs::ClickDrop,
+    /// Transform steps, heightmap path and the last refusal of the terrain panel.
+    pub terrain: terrain::TerrainForm,
 }
 
 /// What the panel asks of the viewer this frame.
@@ -82,6 +91,11 @@ pub fn show_all(
     section(ui, "Files", true, |ui| out.file = files::show(ui, &mut state.files));
     section(ui, "Time", true, |ui| time::show(ui, clock));
     section(ui, "Water", true, |ui| out.scene_changed |= water::show(ui, &mut draft.water, state));
+    section(ui, "Terrain", draft.terrain.is_some(), |ui| {
+        let (changed, request) = terrain::show(ui, &mut draft.terrain, &mut state.terrain);
+        out.scene_changed |= changed;
+        out.file = out.file.take().or(request);
+    });
     section(ui, "Lights", false, |ui| out.scene_changed |= lights::show(ui, &mut draft.lights));
     section(ui, "Sky", false, |ui| out.scene_changed |= sky::show(ui, &mut draft.sky));
     section(ui, "Render", true, |ui| {

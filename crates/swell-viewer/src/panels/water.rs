@@ -11,7 +11,7 @@ use swell::shading::Shading;
 use swell::water::{GerstnerWave, SineWave};
 use swell::{Error, Result};
 
-use super::{fields, gerstner, model_toml, sines, PanelState};
+use super::{fft_ocean, fields, gerstner, model_toml, sines, springs, PanelState};
 
 /// Shading models the panel offers, in menu order.
 pub const SHADINGS: &[Shading] = &[Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::BlinnPhong];
@@ -162,6 +162,8 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) 
     changed |= match &mut w.model {
         WaterModelSpec::Gerstner(spec) => gerstner::show(ui, spec, &mut forms.gerstner),
         WaterModelSpec::Sines(spec) => sines::show(ui, spec, &mut forms.sines),
+        WaterModelSpec::Fft(p) => fft_ocean::show(ui, p),
+        WaterModelSpec::Springs(p) => springs::show(ui, p, &mut forms.click_drop),
         other => model_toml::show(ui, other, &mut forms.model_toml),
     };
     changed

@@ -527,6 +527,12 @@ impl WaveModel for SpringMesh {
         self.sample(rest.x, rest.y).0.y
     }
 
+    /// A [`SpringMesh::drop`] at (x, z): `amount` >= 0 m deep, `radius` > 0 m.
+    fn disturb(&mut self, x: f32, z: f32, amount: f32, radius: f32) -> Result<bool> {
+        self.drop(x, z, radius, amount)?;
+        Ok(true)
+    }
+
     /// Steps to scene time `t` (simulation time `t + warm_up`) at the fixed time step.
     fn advance(&mut self, t: f64) -> Result<()> {
         if !t.is_finite() {
@@ -582,6 +588,27 @@ mod tests {
 
     fn height(m: &SpringMesh, i: usize, j: usize) -> f32 {
         m.positions()[j * m.lattice().verts_x() + i].y
+    }
+
+    #[test]
+    fn disturb_through_the_trait_dents_the_surface_there_and_refuses_bad_input() {
+        let mut m = small(Edges::Fixed, true, 0.05);
+        let model: &mut dyn WaveModel = &mut m;
+        assert!(model.disturb(1.0, -2.0, 0.4, 1.5).unwrap());
+        // The node under the centre sinks by the full amount, the rim not at all, the far side never.
+        assert!((model.height_at(1.0, -2.0, 0.0) + 0.4).abs() < 1e-5);
+        assert!(model.height_at(1.0, -0.5, 0.0).abs() < 1e-6);
+        assert_eq!(model.height_at(-5.0, 5.0, 0.0), 0.0);
+        // Bad input is refused with the reason and changes nothing.
+        let before = m.positions().to_vec();
+        let model: &mut dyn WaveModel = &mut m;
+        assert!(model.disturb(0.0, 0.0, -1.0, 1.0).unwrap_err().to_string().contains("depth"));
+        assert!(model.disturb(0.0, 0.0, 0.1, 0.0).unwrap_err().to_string().contains("radius"));
+        assert!(model.disturb(f32::NAN, 0.0, 0.1, 1.0).is_err());
+        assert_eq!(m.positions(), &before[..]);
+        // Closed-form models have nothing to disturb.
+        let mut g = crate::water::Gerstner::new(vec![]).unwrap();
+        assert!(!WaveModel::disturb(&mut g, 0.0, 0.0, 0.1, 1.0).unwrap());
     }
 
     #[test]

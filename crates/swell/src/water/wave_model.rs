@@ -39,6 +39,14 @@ pub trait WaveModel: Send + Sync {
     fn foam(&self, _grid: &GridSpec, _out: &mut [f32]) -> bool {
         false
     }
+
+    /// Disturbs the surface at world (x, z) (m): a dent `amount` metres deep at the centre easing
+    /// to 0 at `radius` m (the viewer's click on the water). Returns true if the model has state to
+    /// disturb; closed-form models cannot be disturbed and return false (the default). The
+    /// disturbance lasts until the model is rebuilt or stepped back in time.
+    fn disturb(&mut self, _x: f32, _z: f32, _amount: f32, _radius: f32) -> Result<bool> {
+        Ok(false)
+    }
 }
 
 /// Displacement and normal of the surface point that rests at a given (x, z).
