@@ -27,6 +27,16 @@ fn stats_prints_the_realised_sea_state_of_the_ocean_preset() {
 }
 
 #[test]
+fn stats_of_the_blender_preset_reports_blenders_grid_and_scale() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = json(&swell(dir.path(), &["stats", "--preset", "ocean-blender"]));
+    // resolution 12 -> 144 -> 256, spatial_size 100, and the highest |height| at t = 0 is wave_scale.
+    assert_eq!((v["grid"].as_u64(), v["patch_size_m"].as_f64()), (Some(256), Some(100.0)));
+    let (lo, hi) = (v["min_height_m"].as_f64().unwrap(), v["max_height_m"].as_f64().unwrap());
+    assert!((hi.max(-lo) - 1.5).abs() < 1e-4, "{lo} {hi}");
+}
+
+#[test]
 fn stats_reads_scene_files_and_refuses_models_without_a_spectrum() {
     let dir = tempfile::tempdir().unwrap();
     let fft = "version = 1\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n\

@@ -28,9 +28,10 @@ pub fn run(a: StatsArgs) -> Result<()> {
         "min_height_m": s.min_height,
         "max_height_m": s.max_height,
         "foam_coverage": s.foam_coverage,
-        "grid": params.grid,
-        "patch_size_m": params.patch_size,
-        "cascades": params.cascades,
+        // As built: with [water.blender] these come from Blender's keys.
+        "grid": ocean.params().grid,
+        "patch_size_m": ocean.params().patch_size,
+        "cascades": ocean.params().cascades,
     });
     println!("{}", serde_json::to_string_pretty(&json).expect("plain JSON values"));
     Ok(())
