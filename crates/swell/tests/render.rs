@@ -162,3 +162,24 @@ fn calm_water_mirrors_the_hill_above_it_weighted_by_fresnel() {
         "water {mirrored}: hill reflected {with_hill} (off {off_hill}), sky reflected {sky_only} (off {off_sky})"
     );
 }
+
+/// The reflection pass keeps the image bit-identical for any thread count, whichever model
+/// shades the water (per face, per vertex or per pixel, each reading the reflection).
+#[test]
+fn terrain_reflections_are_bit_identical_on_one_and_two_threads() {
+    let mut scene = swell::scene::Scene::from_toml(LAKE_UNDER_A_HILL, "test").unwrap();
+    scene.render.width = 160;
+    scene.render.height = 100;
+    for shading in [Shading::Flat, Shading::Gouraud, Shading::BlinnPhong] {
+        scene.water.as_mut().unwrap().material.shading = shading;
+        let mut world = World::new(scene.clone()).unwrap();
+        world.update(0.0).unwrap();
+        let render = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| Renderer::new().render(&world).color.clone())
+        };
+        let one = render(1);
+        assert!(one == render(2), "{shading:?} differs on 2 threads");
+        assert!(one.iter().all(|c| c.is_finite()), "{shading:?} has non-finite pixels");
+    }
+}
