@@ -3,6 +3,8 @@
 //! is left with the sky, [`overlay_pass`] draws the wireframe and normals when asked for.
 
 mod mesh_pass;
+// issue 10: the OBJ comparison mode's camera/light files, read in the library so they can be fuzzed.
+mod mesh_view_json;
 mod overlay_pass;
 mod sky_pass;
 mod terrain_pass;
@@ -15,6 +17,7 @@ use crate::scene::World;
 use crate::shading::Environment;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
+pub use mesh_view_json::{parse_camera_json, parse_light_json, MeshView, MAX_VIEW_JSON_BYTES};
 
 /// Renders [`World`]s, keeping its buffers from frame to frame so steady-state frames do not
 /// allocate.
