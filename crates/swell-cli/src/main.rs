@@ -6,6 +6,7 @@
 mod args;
 mod bench;
 mod cmd;
+mod interrupt;
 
 use std::process::ExitCode;
 

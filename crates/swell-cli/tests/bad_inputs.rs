@@ -165,3 +165,61 @@ fn bad_command_lines_are_refused_by_name_without_output() {
     ));
     assert!(failures.is_empty(), "{} command lines misbehaved:\n{}", failures.len(), failures.join("\n"));
 }
+
+#[test]
+fn bad_obj_camera_and_light_files_are_refused_by_name_without_output() {
+    let out = tempfile::tempdir().unwrap();
+    let png = out.path().join("m.png");
+    let p = png.to_str().unwrap();
+    let dir = bad_inputs();
+    let f = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let (good_obj, good_cam) = (f("mesh-good.obj"), f("camera-good.json"));
+    let mut failures = Vec::new();
+    let objs: &[(&str, &str)] = &[
+        ("obj-index-out-of-range.obj", "vertex index 4 is outside [1, 3]"),
+        ("obj-negative-index-out-of-range.obj", "vertex index -4 is outside"),
+        ("obj-huge-index.obj", "is not a vertex index"),
+        ("obj-nan-vertex.obj", "three finite numbers"),
+        ("obj-overflowing-vertex.obj", "three finite numbers"),
+        ("obj-two-corner-face.obj", "at least 3 vertices"),
+        ("obj-missing-normal.obj", "normal index 1 is outside [1, 0]"),
+        ("obj-non-utf8.obj", "not UTF-8"),
+        ("obj-truncated.obj", "line 2"),
+        ("/dev/zero", "MAX_OBJ_BYTES"),
+    ];
+    for (obj, expect) in objs {
+        let obj = if obj.starts_with('/') { obj.to_string() } else { f(obj) };
+        let args = ["render", "--obj", &obj, "--camera", &good_cam, "--out", p];
+        failures.extend(check(&obj, &args, Some(expect), out.path()));
+    }
+    let cameras: &[(&str, &str)] = &[
+        ("camera-missing-height.json", "height is missing"),
+        ("camera-too-wide.json", "camera.width = 20000 is outside [1, 16384]"),
+        ("camera-eye-is-target.json", "must differ from camera.eye"),
+        ("camera-overflowing-distance.json", "too far from camera.eye"),
+        ("camera-fov-180.json", "camera.fov_y_deg = 180"),
+        ("camera-unknown-key.json", "unknown key `zoom`"),
+        ("camera-truncated.json", "EOF"),
+        ("light-deep-nesting.json", "recursion limit"),
+        ("/dev/zero", "MAX_VIEW_JSON_BYTES"),
+    ];
+    for (cam, expect) in cameras {
+        let cam = if cam.starts_with('/') { cam.to_string() } else { f(cam) };
+        let args = ["render", "--obj", &good_obj, "--camera", &cam, "--out", p];
+        failures.extend(check(&cam, &args, Some(expect), out.path()));
+    }
+    let lights: &[(&str, &str)] = &[
+        ("light-zero-dir.json", "light.dir"),
+        ("light-negative-color.json", "light.color[1] = -1"),
+        ("light-wrong-type.json", "ambient must be [x, y, z] or a number"),
+        ("light-overflowing-color.json", "light.color[0] = inf"),
+        ("light-deep-nesting.json", "recursion limit"),
+        ("camera-good.json", "unknown key `eye`"),
+    ];
+    for (light, expect) in lights {
+        let light = f(light);
+        let args = ["render", "--obj", &good_obj, "--camera", &good_cam, "--light", &light, "--out", p];
+        failures.extend(check(&light, &args, Some(expect), out.path()));
+    }
+    assert!(failures.is_empty(), "{} OBJ/camera/light files misbehaved:\n{}", failures.len(), failures.join("\n"));
+}

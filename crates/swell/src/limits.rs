@@ -21,6 +21,8 @@ use crate::error::{Error, Result};
 use crate::scene::{Scene, TerrainGenerator, DEFAULT_TERRAIN_SIZE};
 
 pub use crate::math::MAX_GRID_CELLS;
+pub use crate::mesh::{MAX_OBJ_BYTES, MAX_OBJ_TRIANGLES, MAX_OBJ_VERTICES};
+pub use crate::render::MAX_VIEW_JSON_BYTES;
 pub use crate::scene::{MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_THREADS};
 pub use crate::terrain::{MAX_HEIGHTMAP_BYTES, MAX_TERRAIN_SIZE};
 pub use crate::water::{
@@ -72,6 +74,16 @@ pub const TERRAIN_BYTES_PER_VERTEX: u64 = 80;
 /// copy (4).
 pub const BYTES_PER_PIXEL: u64 = 20;
 
+/// Bytes per FFT-ocean sample, per cascade: the initial spectrum and its mirror (8 + 8), the phase
+/// cycles (8), the spectrum at t and FFT work space (8 + 8), four complex field pairs (32), the
+/// wavenumber (4) and foam (4), rounded up to 96.
+pub const FFT_BYTES_PER_SAMPLE: u64 = 96;
+
+/// Bytes of the FFT ocean's `cascades` grids of `grid` x `grid` samples.
+pub fn estimate_fft_bytes(grid: u32, cascades: u32) -> u64 {
+    (grid as u64 * grid as u64).saturating_mul(FFT_BYTES_PER_SAMPLE).saturating_mul(cascades as u64)
+}
+
 /// Bytes of the framebuffer and encoded image for a `width` x `height` frame.
 pub fn estimate_frame_bytes(width: u32, height: u32) -> u64 {
     (width as u64 * height as u64).saturating_mul(BYTES_PER_PIXEL)
@@ -85,16 +97,26 @@ pub fn estimate_grid_bytes(cells_x: u32, cells_z: u32, per_vertex: u64) -> u64 {
     verts.saturating_mul(per_vertex).saturating_add((cells_x as u64 * cells_z as u64).saturating_mul(BYTES_PER_CELL))
 }
 
-/// Estimated peak bytes of building and rendering `scene` one frame at a time: water grid, terrain
-/// grid (a heightmap counted at the largest size it may have, since its size is only known from the
-/// file), and framebuffer.
+/// Estimated peak bytes of building and rendering `scene` one frame at a time: water grid, FFT
+/// cascades, terrain grid (a heightmap is counted when its header is read, since its size is only
+/// known from the file), and framebuffer, supersampled where asked.
 ///
 /// Does not read any file; call it before anything is allocated.
 pub fn estimate_world_bytes(scene: &Scene) -> u64 {
     let mut bytes = estimate_frame_bytes(scene.render.width, scene.render.height);
+    // Supersampling renders into a frame `supersample` times larger on each side, then filters it
+    // down into the frame above.
+    let ss = scene.render.supersample.max(1);
+    if ss > 1 {
+        let big = estimate_frame_bytes(scene.render.width.saturating_mul(ss), scene.render.height.saturating_mul(ss));
+        bytes = bytes.saturating_add(big);
+    }
     if let Some(w) = &scene.water {
         bytes =
             bytes.saturating_add(estimate_grid_bytes(w.surface.cells[0], w.surface.cells[1], WATER_BYTES_PER_VERTEX));
+        if let crate::scene::WaterModelSpec::Fft(p) = &w.model {
+            bytes = bytes.saturating_add(estimate_fft_bytes(p.grid, p.cascades));
+        }
     }
     if let Some(t) = &scene.terrain {
         let side = match t.generator {
@@ -151,6 +173,21 @@ pub fn check_scene_text(text: &str, source: &str) -> Result<()> {
         });
     }
     Ok(())
+}
+
+/// Reads the UTF-8 text file `path`, refusing one over `max_bytes` (named `limit_name` in the
+/// error) after reading at most one byte past it, so `/dev/zero` or a huge download given as a
+/// small text file cannot exhaust memory.
+pub fn read_text_limited(path: &std::path::Path, max_bytes: u64, limit_name: &str) -> Result<String> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut bytes = Vec::new();
+    file.take(max_bytes.saturating_add(1)).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+    let parse_err = |message: String| Error::Parse { path: path.display().to_string(), message };
+    if bytes.len() as u64 > max_bytes {
+        return Err(parse_err(format!("over the file-size limit of {max_bytes} bytes ({limit_name})")));
+    }
+    String::from_utf8(bytes).map_err(|_| parse_err("not UTF-8 text".into()))
 }
 
 /// Deepest `[` / `{` nesting in TOML `text`, outside strings and comments, stopping early once past

@@ -7,7 +7,9 @@
 use glam::Vec2;
 use swell::math::GridSpec;
 use swell::mesh::SurfaceMesh;
-use swell::water::{DropSchedule, Edges, Gerstner, GerstnerWave, SpringMesh, SpringMeshParams, WaveModel};
+use swell::water::{
+    DropSchedule, Edges, FftOcean, FftOceanParams, Gerstner, GerstnerWave, SpringMesh, SpringMeshParams, WaveModel,
+};
 
 /// Energy above the rest state (J): the pre-tensioned lattice stores energy even at rest.
 fn excess_energy(m: &SpringMesh, rest: f64) -> f64 {
@@ -127,5 +129,49 @@ fn closed_form_waves_stay_bounded_at_large_times() {
         assert!(mesh.normals.iter().all(|n| n.is_finite() && n.y > 0.0), "t = {t}");
         let h = model.height_at(12.5, -7.0, t);
         assert!(h.is_finite() && h.abs() <= 2.4 + 1e-3);
+    }
+}
+
+/// The FFT ocean at t = 1e6 s (11.6 days) and beyond: fields finite and of the same size as at the
+/// start (each wave only turns its phase: |h(k, t)| is bounded by |h0(k)| + |h0(-k)|), foam (the
+/// one time-stepped part, faded per step) within [0, 1]; and with `loop_period`, the surface at
+/// t + k T equals the surface at t for k up to 5e4 periods: the phase is reduced modulo T in f64
+/// before it reaches f32, so no precision is lost at large t.
+#[test]
+fn fft_ocean_stays_finite_and_periodic_at_large_times() {
+    let mut params = FftOceanParams { grid: 32, patch_size: 64.0, ..FftOceanParams::default() };
+    let mut ocean = FftOcean::new(&params).unwrap();
+    ocean.advance(3.0).unwrap();
+    let start = ocean.sea_state();
+    let grid = GridSpec::centered(Vec2::splat(64.0), 32, 32).unwrap();
+    let mut foam = vec![0.0f32; grid.vertex_count()];
+    for t in [1.0e6, 1.0e6 + 0.5, 3.15e7, 3.15e9] {
+        ocean.advance(t).unwrap();
+        let s = ocean.sea_state();
+        assert!(s.hs_realised.is_finite() && s.min_height.is_finite() && s.max_height.is_finite(), "t = {t}");
+        assert!(
+            s.hs_realised < 3.0 * start.hs_realised.max(1e-3),
+            "t = {t}: Hs {} vs {}",
+            s.hs_realised,
+            start.hs_realised
+        );
+        assert!(ocean.foam(&grid, &mut foam));
+        assert!(foam.iter().all(|f| (0.0..=1.0).contains(f)), "t = {t}");
+    }
+
+    params.loop_period = Some(20.0);
+    let mut ocean = FftOcean::new(&params).unwrap();
+    let probe = |o: &FftOcean| -> Vec<glam::Vec3> {
+        (0..16).map(|k| o.displacement_at(4.0 * k as f32 - 30.0, 13.0 - 2.5 * k as f32)).collect()
+    };
+    ocean.advance(7.25).unwrap();
+    let early = probe(&ocean);
+    let scale = early.iter().map(|d| d.length()).fold(0.0f32, f32::max);
+    assert!(scale > 1e-3, "a sea with no waves proves nothing");
+    for periods in [1u32, 50_000] {
+        ocean.advance(7.25 + 20.0 * f64::from(periods)).unwrap();
+        for (a, b) in early.iter().zip(probe(&ocean)) {
+            assert!((*a - b).length() <= 1e-4 * scale, "{periods} periods later: {a} vs {b}");
+        }
     }
 }

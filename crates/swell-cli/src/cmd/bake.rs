@@ -36,7 +36,25 @@ pub fn run(a: BakeArgs) -> Result<()> {
         }
         let bar = if a.quiet { ProgressBar::hidden() } else { progress_bar(todo as u64, "baking") };
         let start = Instant::now();
-        let result = bake.run(&mut world, &|_| bar.inc(1));
+        // issue 10: SIGINT/SIGTERM stop the bake after the frames in flight; --resume finishes it.
+        let interrupt = crate::interrupt::Interrupt::install()?;
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let on_frame = |_| {
+            bar.inc(1);
+            done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            interrupt.stop_here();
+        };
+        let result = interrupt.catch(
+            || bake.run(&mut world, &on_frame),
+            || {
+                interrupt.error(format_args!(
+                    "{} of {todo} frames baked, every file in {} is complete; run the same command with --resume \
+                     to bake the rest",
+                    done.load(std::sync::atomic::Ordering::SeqCst),
+                    a.out.display()
+                ))
+            },
+        );
         bar.finish_and_clear();
         result?;
         let secs = start.elapsed().as_secs_f64();

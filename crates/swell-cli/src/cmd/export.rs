@@ -49,7 +49,15 @@ pub fn run(a: ExportArgs) -> Result<()> {
             }
             Some(range) => {
                 let bar = progress_bar(u64::from(range.len()), "exporting");
+                // issue 10: SIGINT/SIGTERM stop between frames; every file written is complete.
+                let interrupt = crate::interrupt::Interrupt::install()?;
                 for k in range.iter() {
+                    interrupt.check(format_args!(
+                        "{} of {} frames written, each complete; {} and later not written",
+                        k - range.first,
+                        range.len(),
+                        frame_path(&a.out, k).display()
+                    ))?;
                     write(&frame_path(&a.out, k), f64::from(k) / a.fps)?;
                     bar.inc(1);
                 }

@@ -4,12 +4,10 @@
 use std::path::Path;
 use std::time::Instant;
 
-use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
-use serde_json::{Map, Value};
 use swell::export::{write_gif, write_png};
 use swell::mesh::parse_obj;
-use swell::render::{MeshLight, MeshRenderer, Renderer};
+use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
 use swell::scene::{Camera, World, MAX_IMAGE_SIDE};
 use swell::shading::Shading;
 use swell::{Error, Result};
@@ -78,6 +76,9 @@ pub fn run(a: RenderArgs) -> Result<()> {
             );
             bar.set_message(format!("rendering {}", a.out.display()));
             let delay_cs = (100.0 / a.fps).round().clamp(1.0, 65535.0) as u16;
+            // issue 10: SIGINT/SIGTERM abandon the animation between frames; the GIF is written
+            // atomically, so nothing is left under its name.
+            let interrupt = crate::interrupt::Interrupt::install()?;
             let result = write_gif(
                 &a.out,
                 width as u16,
@@ -85,6 +86,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
                 frames as usize,
                 delay_cs,
                 |k, rgba| {
+                    interrupt.check(format_args!("{} not written", a.out.display()))?;
                     world.update(a.time + k as f64 / a.fps)?;
                     renderer.render(&world).encode_rgba8(exposure, gamma, rgba);
                     Ok(())
@@ -193,7 +195,7 @@ fn run_mesh(a: &RenderArgs) -> Result<()> {
         Some(path) => read_light(path)?,
         None => MeshLight::default(),
     };
-    let text = read_text(obj)?;
+    let text = read_text(obj, swell::limits::MAX_OBJ_BYTES, "MAX_OBJ_BYTES")?;
     let mesh = parse_obj(&text, &obj.display().to_string())?;
     let pool = thread_pool(a.threads.unwrap_or(0))?;
     let mut renderer = MeshRenderer::new();
@@ -220,92 +222,16 @@ fn run_mesh(a: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-fn read_text(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    String::from_utf8(bytes)
-        .map_err(|_| Error::Parse { path: path.display().to_string(), message: "not UTF-8 text".into() })
-}
-
-/// Reads a JSON object, refusing keys outside `allowed`.
-fn read_json_object(path: &Path, allowed: &[&str]) -> Result<Map<String, Value>> {
-    let parse_err = |message: String| Error::Parse { path: path.display().to_string(), message };
-    let value: Value = serde_json::from_str(&read_text(path)?).map_err(|e| parse_err(e.to_string()))?;
-    let Value::Object(map) = value else { return Err(parse_err("must be a JSON object {...}".into())) };
-    if let Some(k) = map.keys().find(|k| !allowed.contains(&k.as_str())) {
-        return Err(parse_err(format!("unknown key `{k}`; valid: {}", allowed.join(", "))));
-    }
-    Ok(map)
-}
-
-/// A number, `[x, y, z]` or `[r, g, b, a]` (alpha ignored); a single number `c` means `[c, c, c]`
-/// where `scalar_ok`.
-fn json_vec3(map: &Map<String, Value>, key: &str, file: &Path, scalar_ok: bool) -> Result<Option<Vec3>> {
-    let bad = || Error::Parse {
-        path: file.display().to_string(),
-        message: format!("{key} must be [x, y, z]{}", if scalar_ok { " or a number" } else { "" }),
-    };
-    match map.get(key) {
-        None => Ok(None),
-        Some(Value::Number(n)) if scalar_ok => Ok(Some(Vec3::splat(n.as_f64().ok_or_else(bad)? as f32))),
-        Some(Value::Array(a)) if a.len() == 3 || a.len() == 4 => {
-            let c: Vec<f32> = a.iter().map(|v| v.as_f64().map(|f| f as f32)).collect::<Option<_>>().ok_or_else(bad)?;
-            Ok(Some(Vec3::new(c[0], c[1], c[2])))
-        }
-        Some(_) => Err(bad()),
-    }
-}
-
-fn json_number(map: &Map<String, Value>, key: &str, file: &Path) -> Result<Option<f64>> {
-    match map.get(key) {
-        None => Ok(None),
-        Some(v) => v.as_f64().map(Some).ok_or_else(|| Error::Parse {
-            path: file.display().to_string(),
-            message: format!("{key} must be a number"),
-        }),
-    }
+fn read_text(path: &Path, max_bytes: u64, limit_name: &str) -> Result<String> {
+    swell::limits::read_text_limited(path, max_bytes, limit_name)
 }
 
 fn read_camera(path: &Path) -> Result<(Camera, u32, u32)> {
-    let keys = ["eye", "target", "up", "fov_y_deg", "near", "far", "width", "height"];
-    let map = read_json_object(path, &keys)?;
-    let missing = |k: &str| Error::Parse { path: path.display().to_string(), message: format!("{k} is missing") };
-    let mut camera = Camera {
-        eye: json_vec3(&map, "eye", path, false)?.ok_or_else(|| missing("eye"))?,
-        target: json_vec3(&map, "target", path, false)?.ok_or_else(|| missing("target"))?,
-        up: Vec3::Y,
-        fov_y_deg: 45.0,
-        near: 0.1,
-        far: 5000.0,
-    };
-    if let Some(up) = json_vec3(&map, "up", path, false)? {
-        camera.up = up;
-    }
-    for (key, field) in [("fov_y_deg", &mut camera.fov_y_deg), ("near", &mut camera.near), ("far", &mut camera.far)] {
-        if let Some(v) = json_number(&map, key, path)? {
-            *field = v as f32;
-        }
-    }
-    camera.validate("camera")?;
-    let side = |k: &str| -> Result<u32> {
-        let v = json_number(&map, k, path)?.ok_or_else(|| missing(k))?;
-        if v.fract() != 0.0 || !(1.0..=MAX_IMAGE_SIDE as f64).contains(&v) {
-            return Err(Error::out_of_range(format!("camera.{k}"), v, format!("[1, {MAX_IMAGE_SIDE}] (whole pixels)")));
-        }
-        Ok(v as u32)
-    };
-    Ok((camera, side("width")?, side("height")?))
+    let text = read_text(path, MAX_VIEW_JSON_BYTES, "MAX_VIEW_JSON_BYTES")?;
+    let view = parse_camera_json(&text, &path.display().to_string())?;
+    Ok((view.camera, view.width, view.height))
 }
 
 fn read_light(path: &Path) -> Result<MeshLight> {
-    let map = read_json_object(path, &["dir", "color", "ambient", "base_color", "background"])?;
-    let d = MeshLight::default();
-    let light = MeshLight {
-        dir: json_vec3(&map, "dir", path, false)?.unwrap_or(d.dir),
-        color: json_vec3(&map, "color", path, true)?.unwrap_or(d.color),
-        ambient: json_vec3(&map, "ambient", path, true)?.unwrap_or(d.ambient),
-        base_color: json_vec3(&map, "base_color", path, true)?.unwrap_or(d.base_color),
-        background: json_vec3(&map, "background", path, true)?.unwrap_or(d.background),
-    };
-    light.validate("light")?;
-    Ok(light)
+    parse_light_json(&read_text(path, MAX_VIEW_JSON_BYTES, "MAX_VIEW_JSON_BYTES")?, &path.display().to_string())
 }

@@ -4,5 +4,5 @@
 mod obj;
 mod surface_mesh;
 
-pub use obj::{parse_obj, TriangleMesh};
+pub use obj::{parse_obj, TriangleMesh, MAX_OBJ_BYTES, MAX_OBJ_TRIANGLES, MAX_OBJ_VERTICES};
 pub use surface_mesh::SurfaceMesh;

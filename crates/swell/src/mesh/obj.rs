@@ -18,13 +18,33 @@ pub struct TriangleMesh {
     pub indices: Vec<u32>,
 }
 
+/// Most bytes of OBJ text read: 256 MiB (about 8 M triangles written plainly).
+///
+/// Parsing holds at most about 8 bytes per byte of text (a corner `1 ` is 2 bytes and costs a
+/// 4-byte index per fan triangle, a `v` line of 8 bytes costs 12 + 24 bytes plus its hash entry),
+/// so this bounds the reader at about 2 GiB, within [`crate::limits::MEMORY_BUDGET_BYTES`].
+pub const MAX_OBJ_BYTES: u64 = 256 << 20;
+
+/// Most vertices (distinct position/normal pairs) of a mesh read from OBJ: 16 M.
+pub const MAX_OBJ_VERTICES: usize = 16 << 20;
+
+/// Most triangles of a mesh read from OBJ (after splitting polygons into fans): 32 M.
+pub const MAX_OBJ_TRIANGLES: usize = 32 << 20;
+
 /// Parses OBJ text; `source` names the file in errors.
 ///
 /// Faces may be `f v`, `f v/vt`, `f v//vn` or `f v/vt/vn`, with 1-based or negative (relative)
 /// indices; polygons are split into fans. A vertex is each distinct (position, normal) pair. An
 /// index outside the vertices read so far, a malformed number or a face of fewer than three
-/// vertices is an error naming the line.
+/// vertices is an error naming the line. Text over [`MAX_OBJ_BYTES`], or a mesh over
+/// [`MAX_OBJ_VERTICES`] or [`MAX_OBJ_TRIANGLES`], is refused naming the limit.
 pub fn parse_obj(text: &str, source: &str) -> Result<TriangleMesh> {
+    if text.len() as u64 > MAX_OBJ_BYTES {
+        return Err(Error::Parse {
+            path: source.to_string(),
+            message: format!("{} bytes is over the OBJ limit of {MAX_OBJ_BYTES} bytes (MAX_OBJ_BYTES)", text.len()),
+        });
+    }
     let mut v: Vec<Vec3> = Vec::new();
     let mut vn: Vec<Vec3> = Vec::new();
     let mut mesh = TriangleMesh::default();
@@ -81,6 +101,12 @@ pub fn parse_obj(text: &str, source: &str) -> Result<TriangleMesh> {
                 }
                 if corners.len() < 3 {
                     return Err(err(format!("a face needs at least 3 vertices, found {}", corners.len())));
+                }
+                if mesh.positions.len() > MAX_OBJ_VERTICES {
+                    return Err(err(format!("over the limit of {MAX_OBJ_VERTICES} vertices (MAX_OBJ_VERTICES)")));
+                }
+                if mesh.indices.len() / 3 + corners.len() - 2 > MAX_OBJ_TRIANGLES {
+                    return Err(err(format!("over the limit of {MAX_OBJ_TRIANGLES} triangles (MAX_OBJ_TRIANGLES)")));
                 }
                 for k in 1..corners.len() - 1 {
                     mesh.indices.extend_from_slice(&[corners[0], corners[k], corners[k + 1]]);

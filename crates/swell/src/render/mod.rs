@@ -5,6 +5,8 @@
 //! when asked for.
 
 mod mesh_pass;
+// issue 10: the OBJ comparison mode's camera/light files, read in the library so they can be fuzzed.
+mod mesh_view_json;
 mod overlay_pass;
 mod reflection_pass;
 mod sky_pass;
@@ -18,6 +20,7 @@ use crate::scene::World;
 use crate::shading::Environment;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
+pub use mesh_view_json::{parse_camera_json, parse_light_json, MeshView, MAX_VIEW_JSON_BYTES};
 
 /// Renders [`World`]s, keeping its buffers from frame to frame so steady-state frames do not
 /// allocate.

@@ -56,6 +56,10 @@ impl Camera {
             ));
         }
         let forward = self.target - self.eye;
+        // Each finite, but so far apart that the distance overflows f32: the view would be NaN.
+        if !forward.length().is_finite() {
+            return Err(Error::invalid(format!("{key}.target"), "is too far from camera.eye (distance overflows f32)"));
+        }
         if forward.length() < 1e-6 {
             return Err(Error::invalid(format!("{key}.target"), "must differ from camera.eye"));
         }
