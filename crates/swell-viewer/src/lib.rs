@@ -17,6 +17,7 @@
 //! | [`panels`] | one module per scene section or water model |
 //! | [`camera_control`] | orbit, zoom and pan as pure functions on `Camera` |
 //! | [`live_view`] | render, encode, upload; the thread pool |
+//! | [`picking`] | a click in the view to a point on the water (spring mesh disturbances) |
 //! | [`clock`], [`frame_stats`], [`files`] | time, timings, scene and PNG files |
 //!
 //! ## How a parameter change flows
@@ -34,7 +35,7 @@
 //!
 //! ## Adding a panel for a water model
 //!
-//! Follow `panels/gerstner.rs`:
+//! Follow `panels/fft_ocean.rs` or `panels/springs.rs` (or `panels/wave_list.rs` for a list):
 //!
 //! 1. Create `panels/<model>.rs` with
 //!    `pub fn show(ui: &mut Ui, spec: &mut <Model>Spec, form: &mut <Model>Form) -> bool`, using the

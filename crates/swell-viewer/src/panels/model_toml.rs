@@ -1,4 +1,4 @@
-//! The panel of every water model without a dedicated one (spring mesh, FFT ocean, radial pool
+//! The panel of every water model without a dedicated one (radial pool
 //! wave, noise, river, Tessendorf, wave sets, Airy, steep sines): the model's own `[water]` keys as
 //! editable TOML, applied through the same parser and validation as a scene file, so every
 //! parameter of every model can be changed live and a bad value is refused with the scene-file
