@@ -1,6 +1,9 @@
 //! Bake throughput on the sea preset at 512 x 512 cells: the simulation step, one EXR map, and
 //! whole frames (simulate + displacement, normal EXRs, written atomically to a temporary directory).
 //!
+//! Also the bake case: the `ocean` preset's FFT ocean at a 512 x 512 FFT grid and 512 x 512
+//! cells over one 250 m patch, tiled 512 x 512 maps (displacement, normal, foam).
+//!
 //! `cargo bench -p swell --bench bake`; set RAYON_NUM_THREADS=2 for the 2-core figure.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -15,6 +18,31 @@ fn sea_512() -> World {
     let mut scene = preset("sea").unwrap();
     scene.water.as_mut().unwrap().surface.cells = [512, 512];
     World::new(scene).unwrap()
+}
+
+/// The `ocean` preset with a 512² FFT grid whose mesh covers exactly one patch (so `tile` holds).
+fn ocean_512() -> World {
+    let text = include_str!("../presets/ocean.toml")
+        .replace("size = [400.0, 400.0]", "size = [250.0, 250.0]")
+        .replace("grid = 256", "grid = 512");
+    World::new(swell::scene::Scene::from_toml(&text, "ocean 512").unwrap()).unwrap()
+}
+
+fn bench_ocean(c: &mut Criterion) {
+    let mut world = ocean_512();
+    let dir = tempfile::tempdir().unwrap();
+    let mut g = c.benchmark_group("bake_ocean_512");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(u64::from(FRAMES)));
+    g.bench_function(format!("bake_{FRAMES}_frames"), |b| {
+        b.iter(|| {
+            let mut s = BakeSettings::new(FrameRange::new("f", 0, FRAMES - 1).unwrap());
+            s.tile = true;
+            let bake = Bake::prepare(&mut world, dir.path(), s).unwrap();
+            bake.run(&mut world, &|_| {}).unwrap();
+        })
+    });
+    g.finish();
 }
 
 fn bench(c: &mut Criterion) {
@@ -47,5 +75,5 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+criterion_group!(benches, bench, bench_ocean);
 criterion_main!(benches);
