@@ -1,6 +1,6 @@
 //! Rasterizer throughput: paper 001's largest case (a 513 x 513 height field, 524,288 triangles, at
-//! 800 x 800 with flat shading) on 1 and 2 threads, and the `sea` preset at 1280 x 720 with its
-//! simulation.
+//! 800 x 800 with flat shading) on 1 and 2 threads, the `sea` preset at 1280 x 720 with its
+//! simulation, and the `valley-lake` preset's render (terrain reflected in the water).
 //!
 //! Each case runs twice: under `wall/` with criterion's wall-clock timer, and under `cpu/` with
 //! the CPU time of the whole process (summed over its threads, from Linux's
@@ -87,6 +87,22 @@ fn sea<M: Measurement + 'static>(c: &mut Criterion<M>, prefix: &str) {
     group.finish();
 }
 
+/// The `valley-lake` preset (257² terrain rising out of a 200² Gerstner lake) at 1280 x 720, render
+/// only: terrain pass, the mirrored terrain for the water's reflection, water, sky.
+fn valley_lake<M: Measurement + 'static>(c: &mut Criterion<M>, prefix: &str) {
+    let mut group = c.benchmark_group(format!("{prefix}/valley_lake_1280x720"));
+    group.sample_size(20);
+    for (name, shading) in [("gouraud", Shading::Gouraud), ("blinn_phong", Shading::BlinnPhong)] {
+        let mut scene = preset("valley-lake").unwrap();
+        scene.water.as_mut().unwrap().material.shading = shading;
+        let mut world = World::new(scene).unwrap();
+        world.update(1.0).unwrap();
+        let mut renderer = Renderer::new();
+        group.bench_function(format!("{name}_render"), |b| b.iter(|| renderer.render(&world).color[0]));
+    }
+    group.finish();
+}
+
 /// Process CPU time in nanoseconds: the sum over its threads of the first field of `schedstat`.
 fn process_cpu_ns() -> u64 {
     let mut total = 0;
@@ -154,11 +170,13 @@ impl Measurement for CpuTime {
 fn wall(c: &mut Criterion<WallTime>) {
     terrain(c, "wall");
     sea(c, "wall");
+    valley_lake(c, "wall");
 }
 
 fn cpu(c: &mut Criterion<CpuTime>) {
     terrain(c, "cpu");
     sea(c, "cpu");
+    valley_lake(c, "cpu");
 }
 
 criterion_group!(wall_benches, wall);
