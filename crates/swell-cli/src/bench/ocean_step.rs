@@ -60,6 +60,29 @@ fn preset_params(grid: u32) -> Result<swell::water::FftOceanParams> {
     }
 }
 
+/// One step's times in milliseconds: the whole simulation, its stages as the ocean clocks them,
+/// and the displaced mesh built from it.
+struct StepTimes {
+    sim: f64,
+    evolve: f64,
+    fft: f64,
+    foam: f64,
+    mesh: f64,
+}
+
+/// Steps `ocean` to the time of step `k` (1/60 s apart) and rebuilds `mesh` from it, timing both.
+fn timed_step(ocean: &mut FftOcean, mesh: &mut SurfaceMesh, k: u32) -> Result<StepTimes> {
+    let t = f64::from(k + 1) * STEP_S;
+    let t0 = Instant::now();
+    ocean.advance(t)?;
+    let t1 = Instant::now();
+    mesh.displace(ocean, t);
+    let t2 = Instant::now();
+    let st = ocean.stage_times();
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    Ok(StepTimes { sim: ms(t1 - t0), evolve: st.evolve_ms, fft: st.fft_ms, foam: st.foam_ms, mesh: ms(t2 - t1) })
+}
+
 /// Stage names of the `ocean` experiment, in series order.
 const STAGES: [&str; 5] = [
     "simulation (evolve + FFTs + foam)",
@@ -97,16 +120,9 @@ pub fn ocean_experiment(ctx: &Context) -> Result<Report> {
             if timed && started.is_none() {
                 started = Some(Instant::now());
             }
-            let t = f64::from(k + 1) * STEP_S;
-            let t0 = Instant::now();
-            ocean.advance(t)?;
-            let t1 = Instant::now();
-            mesh.displace(&ocean, t);
-            let t2 = Instant::now();
+            let step = timed_step(&mut ocean, &mut mesh, k)?;
             if timed {
-                let st = ocean.stage_times();
-                let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-                for (v, x) in samples.iter_mut().zip([ms(t1 - t0), st.evolve_ms, st.fft_ms, st.foam_ms, ms(t2 - t1)]) {
+                for (v, x) in samples.iter_mut().zip([step.sim, step.evolve, step.fft, step.foam, step.mesh]) {
                     v.push(x);
                 }
             }
@@ -173,21 +189,14 @@ fn ocean(grid: u32, a: &BenchArgs) -> Result<()> {
         let mut ocean = FftOcean::new(&params)?;
         let mut mesh = SurfaceMesh::new(mesh_grid);
         for k in 0..WARM_UP_STEPS + steps {
-            let t = f64::from(k + 1) * STEP_S;
-            let t0 = Instant::now();
-            ocean.advance(t)?;
-            let t1 = Instant::now();
-            mesh.displace(&ocean, t);
-            let t2 = Instant::now();
+            let step = timed_step(&mut ocean, &mut mesh, k)?;
             if k >= WARM_UP_STEPS {
-                let st = ocean.stage_times();
-                let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-                sim.push(ms(t1 - t0));
-                mesh_ms.push(ms(t2 - t1));
-                total.push(ms(t2 - t0));
-                evolve.push(st.evolve_ms);
-                fft.push(st.fft_ms);
-                foam.push(st.foam_ms);
+                sim.push(step.sim);
+                mesh_ms.push(step.mesh);
+                total.push(step.sim + step.mesh);
+                evolve.push(step.evolve);
+                fft.push(step.fft);
+                foam.push(step.foam);
             }
         }
         Ok(())
