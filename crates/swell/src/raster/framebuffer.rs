@@ -71,14 +71,10 @@ impl Framebuffer {
     /// law `c^(1/gamma)` when `gamma` is given. `out` is resized to `4 * width * height`.
     pub fn encode_rgba8(&self, exposure: f32, gamma: Option<f32>, out: &mut Vec<u8>) {
         out.resize(self.color.len() * 4, 0);
-        let encode = |c: f32| -> u8 {
-            let c = c * exposure;
-            let e = match gamma {
-                None => linear_to_srgb(c),
-                Some(g) => c.clamp(0.0, 1.0).powf(1.0 / g),
-            };
-            // NaN clamps to 0 here, so a bad sample can never reach a file as garbage.
-            (e * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+        let table = ByteThresholds::new(exposure, gamma);
+        let encode = |c: f32| match &table {
+            Some(t) => t.encode(c),
+            None => encode_channel(c, exposure, gamma),
         };
         out.par_chunks_mut(4 * self.width as usize).zip(self.color.par_chunks(self.width as usize)).for_each(
             |(dst, src)| {
@@ -122,6 +118,69 @@ impl Framebuffer {
     }
 }
 
+/// One linear channel to a byte: times `exposure`, the sRGB curve or `c^(1/gamma)`, rounded.
+fn encode_channel(c: f32, exposure: f32, gamma: Option<f32>) -> u8 {
+    let c = c * exposure;
+    let e = match gamma {
+        None => linear_to_srgb(c),
+        Some(g) => c.clamp(0.0, 1.0).powf(1.0 / g),
+    };
+    // NaN clamps to 0 here, so a bad sample can never reach a file as garbage.
+    (e * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+}
+
+/// [`encode_channel`] without a `powf` per channel: the encoding is non-decreasing in the linear
+/// value, so it is fully described by the smallest linear value reaching each byte 1..=255,
+/// found once per frame by bisection over the f32 bit patterns (non-negative floats order as
+/// their bits). A channel is then encoded by counting thresholds at or below it (8 compares).
+/// Callgrind: the encoding of a 1280 x 720 frame was 271 M instructions (three `powf` per pixel),
+/// more than half the `ocean` frame's rendering.
+struct ByteThresholds {
+    /// `lower[k - 1]`: the smallest linear value encoded as k or more; NaN where none is.
+    lower: [f32; 255],
+}
+
+impl ByteThresholds {
+    /// `None` when the encoding is not known to be non-decreasing (exposure not positive and
+    /// finite, gamma not positive and finite): the caller then encodes each channel directly.
+    fn new(exposure: f32, gamma: Option<f32>) -> Option<Self> {
+        let valid_gamma = gamma.is_none_or(|g| g.is_finite() && g > 0.0);
+        if !(exposure.is_finite() && exposure > 0.0 && valid_gamma) {
+            return None;
+        }
+        let f = |bits: u32| encode_channel(f32::from_bits(bits), exposure, gamma);
+        let top = f32::INFINITY.to_bits();
+        let mut lower = [f32::NAN; 255];
+        for (k, slot) in (1..=255u8).zip(lower.iter_mut()) {
+            if f(top) < k {
+                break;
+            }
+            // Smallest bit pattern in [0, top] whose encoding reaches k.
+            let (mut lo, mut hi) = (0u32, top);
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                if f(mid) >= k {
+                    hi = mid;
+                } else {
+                    lo = mid + 1;
+                }
+            }
+            *slot = f32::from_bits(lo);
+        }
+        // Negative values and NaN encode to 0 (they clamp to 0 first), as does 0 itself.
+        if f(0) != 0 {
+            return None;
+        }
+        Some(Self { lower })
+    }
+
+    #[inline]
+    fn encode(&self, c: f32) -> u8 {
+        // NaN compares false with everything, so a NaN channel (or threshold) counts as 0.
+        self.lower.partition_point(|&t| t <= c) as u8
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -137,5 +196,20 @@ mod tests {
         // Blocks {0, 1, 4, 5} and {2, 3, 6, 7}.
         assert_eq!(dst.color, vec![Vec3::splat(2.5), Vec3::splat(4.5)]);
         assert_eq!(dst.depth, vec![0.25, 1.0]);
+    }
+
+    #[test]
+    fn byte_thresholds_encode_exactly_like_the_direct_curve() {
+        for (exposure, gamma) in [(1.0, None), (1.7, None), (1.0, Some(1.0)), (0.6, Some(2.2))] {
+            let table = ByteThresholds::new(exposure, gamma).unwrap();
+            // Dense over the range where bytes change, plus the special values.
+            let mut values: Vec<f32> = (0..200_000).map(|i| i as f32 / 150_000.0).collect();
+            values.extend([-1.0, -0.0, 0.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 1e30, 1e-40]);
+            for c in values {
+                assert_eq!(table.encode(c), encode_channel(c, exposure, gamma), "c = {c}, {exposure} {gamma:?}");
+            }
+        }
+        assert!(ByteThresholds::new(0.0, None).is_none());
+        assert!(ByteThresholds::new(1.0, Some(f32::NAN)).is_none());
     }
 }
