@@ -164,6 +164,21 @@ pub struct Bake {
 }
 
 /// The fields of one frame, captured from the world so the world can move on.
+/// Bytes one captured frame holds while it waits to be written (displacement, normal, foam) plus
+/// its encoded files, for `samples` map pixels.
+fn frame_bytes(samples: usize) -> u64 {
+    (samples as u64).saturating_mul((12 + 12 + 4) * 2)
+}
+
+/// Frames per batch: two per thread so that writing keeps every core busy, but never so many that
+/// the two batches in flight (one written while the next is simulated) pass half the memory budget
+/// ([`crate::limits::MEMORY_BUDGET_BYTES`]): many threads on a large grid would otherwise hold
+/// gigabytes of captured fields. At least one frame. The output does not depend on it.
+fn batch_len(threads: usize, samples: usize) -> usize {
+    let by_memory = crate::limits::MEMORY_BUDGET_BYTES / 2 / frame_bytes(samples).saturating_mul(2).max(1);
+    (2 * threads).max(2).min(usize::try_from(by_memory).unwrap_or(usize::MAX)).max(1)
+}
+
 struct FrameFields {
     frame: u32,
     disp: Vec<Vec3>,
@@ -259,8 +274,8 @@ impl Bake {
         if self.todo.is_empty() {
             return Ok(());
         }
-        let batch = (2 * rayon::current_num_threads()).max(2);
         let n = self.map_size().0 * self.map_size().1;
+        let batch = batch_len(rayon::current_num_threads(), n);
         let alloc = || -> Vec<FrameFields> {
             (0..batch.min(self.todo.len()))
                 .map(|_| FrameFields {
@@ -554,5 +569,19 @@ mod tests {
         assert_eq!(round_up_2_digits(0.0456), 0.046);
         assert_eq!(round_up_2_digits(12.0), 12.0);
         assert_eq!(round_up_2_digits(0.0), 0.0);
+    }
+
+    #[test]
+    fn batches_keep_two_frames_per_thread_within_half_the_memory_budget() {
+        // Small maps: two frames per thread, at least two.
+        assert_eq!(batch_len(1, 513 * 513), 2);
+        assert_eq!(batch_len(8, 513 * 513), 16);
+        // 256 threads on a 4097² map: the memory bound wins, and two batches fit in half the budget.
+        let big = 4097 * 4097;
+        let b = batch_len(256, big);
+        assert!(b < 512, "batch {b}");
+        assert!(2 * b as u64 * frame_bytes(big) <= crate::limits::MEMORY_BUDGET_BYTES / 2);
+        // A map so large that one frame passes the bound still bakes, one frame at a time.
+        assert_eq!(batch_len(4, usize::MAX / 2), 1);
     }
 }
