@@ -30,8 +30,33 @@ struct Xvfb {
 
 impl Drop for Xvfb {
     fn drop(&mut self) {
+        // SIGTERM, not SIGKILL: Xvfb then removes its /tmp/.X{n}-lock, which would otherwise stay
+        // behind and use up the displays this test tries, one per run.
+        if let Ok(pid) = i32::try_from(self.child.id()) {
+            // SAFETY: kill(2) only sends a signal to our own child process.
+            unsafe { libc::kill(pid, libc::SIGTERM) };
+        }
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while Instant::now() < deadline {
+            if let Ok(Some(_)) = self.child.try_wait() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
+    }
+}
+
+/// Whether `/tmp/.X{n}-lock` names a live X server. A lock left by a killed server (its PID gone)
+/// does not count: Xvfb removes such a stale lock itself when it starts on that display.
+fn display_in_use(n: u32) -> bool {
+    let Ok(text) = std::fs::read_to_string(format!("/tmp/.X{n}-lock")) else {
+        return false;
+    };
+    match text.trim().parse::<u32>() {
+        Ok(pid) => Path::new(&format!("/proc/{pid}")).exists(),
+        Err(_) => true,
     }
 }
 
@@ -57,7 +82,7 @@ fn start_xvfb(tools: &[&str]) -> Option<Xvfb> {
     }
     for _ in 0..40 {
         let n = NEXT_DISPLAY.fetch_add(1, Ordering::SeqCst);
-        if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+        if display_in_use(n) {
             continue;
         }
         let child = Command::new("Xvfb")
