@@ -26,7 +26,7 @@ pub fn run(a: ExportArgs) -> Result<()> {
     if frames.is_some() && !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= MAX_FPS) {
         return Err(Error::out_of_range("--fps", a.fps, format!("(0, {MAX_FPS}]")));
     }
-    check_output_dir(&a.out)?;
+    super::check_output_dir(&a.out)?;
     let scene = load_scene(&a.source)?;
     let aspect = scene.render.width as f32 / scene.render.height as f32;
     let pool = thread_pool(a.threads)?;
@@ -103,18 +103,5 @@ fn resolve_format(a: &ExportArgs) -> Result<Format> {
                 a.out.display()
             ),
         )),
-    }
-}
-
-/// Fails early, before any work, if the output's directory does not exist.
-fn check_output_dir(out: &Path) -> Result<()> {
-    let dir = match out.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    if dir.is_dir() {
-        Ok(())
-    } else {
-        Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())))
     }
 }

@@ -72,3 +72,16 @@ pub fn thread_pool(threads: u32) -> Result<rayon::ThreadPool> {
         .build()
         .map_err(|e| Error::invalid("--threads", format!("cannot start {threads} threads: {e}")))
 }
+
+/// Fails early, before any work, if the directory `--out` would be written into does not exist.
+fn check_output_dir(out: &std::path::Path) -> Result<()> {
+    let dir = match out.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    if dir.is_dir() {
+        Ok(())
+    } else {
+        Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())))
+    }
+}

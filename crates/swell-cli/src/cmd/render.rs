@@ -128,21 +128,8 @@ fn resolve_output(a: &RenderArgs) -> Result<Output> {
             ))
         }
     };
-    check_output_dir(&a.out)?;
+    super::check_output_dir(&a.out)?;
     Ok(output)
-}
-
-/// Fails early, before rendering, if the output's directory does not exist.
-fn check_output_dir(out: &Path) -> Result<()> {
-    let dir = match out.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    if dir.is_dir() {
-        Ok(())
-    } else {
-        Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())))
-    }
 }
 
 /// Parses `WIDTHxHEIGHT`, each side in [1, MAX_IMAGE_SIDE].
@@ -181,7 +168,7 @@ fn run_mesh(a: &RenderArgs) -> Result<()> {
         Some("png") => {}
         _ => return Err(Error::invalid("--out", format!("{} must end in .png", a.out.display()))),
     }
-    check_output_dir(&a.out)?;
+    super::check_output_dir(&a.out)?;
     let repeat = a.repeat.unwrap_or(1);
     if !(1..=MAX_FRAMES).contains(&repeat) {
         return Err(Error::out_of_range("--repeat", repeat, format!("[1, {MAX_FRAMES}]")));
