@@ -164,7 +164,7 @@ pub fn scene(extent_units: u32, cells: (u32, u32), added: usize) -> Scene {
         // Beyond the patch the eye sees distant sea (as in the `sea` preset).
         sky: Sky { ground: Vec3::new(0.30, 0.40, 0.47), ..Sky::default() },
         water: Some(WaterSpec {
-            surface: WaterSurface { size: Vec2::splat(extent), cells: [cells.0, cells.1], center: Vec2::ZERO },
+            surface: WaterSurface { size: Vec2::splat(extent), cells: [cells.0, cells.1], ..WaterSurface::default() },
             // Gouraud shading, as in the paper.
             material: WaterMaterial::default(),
             model: WaterModelSpec::Gerstner(GerstnerSpec { waves: paper_waves(added) }),

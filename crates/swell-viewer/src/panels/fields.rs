@@ -134,3 +134,20 @@ pub fn flag(ui: &mut Ui, label: &str, value: &mut bool) -> bool {
     ui.end_row();
     changed
 }
+
+/// A labelled 64-bit seed with a "next" button (seed + 1, wrapping); returns whether it changed.
+pub fn seed(ui: &mut Ui, label: &str, value: &mut u64) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let mut changed = ui.add(DragValue::new(value).speed(1.0)).changed();
+            if ui.small_button("next").on_hover_text("seed + 1").clicked() {
+                *value = value.wrapping_add(1);
+                changed = true;
+            }
+            changed
+        })
+        .inner;
+    ui.end_row();
+    changed
+}

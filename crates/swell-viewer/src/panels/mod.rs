@@ -17,22 +17,30 @@
 //! Pure edit operations (adding a wave, switching a model) are plain functions beside the panel,
 //! unit-tested without a window.
 
+pub mod airy;
 pub mod camera;
+pub mod dispersion;
 pub mod fft_ocean;
 pub mod fields;
 pub mod files;
 pub mod gerstner;
 pub mod lights;
-pub mod model_toml;
+pub mod noise;
+pub mod radial;
 pub mod render;
+pub mod river;
 pub mod sines;
 pub mod sky;
 pub mod springs;
+pub mod steep_sines;
 pub mod table_fields;
 pub mod terrain;
+pub mod tessendorf;
 pub mod time;
 pub mod water;
+pub mod water_transform;
 pub mod wave_list;
+pub mod wave_set;
 
 use eframe::egui::{CollapsingHeader, Ui};
 use swell::scene::Scene;
@@ -46,8 +54,14 @@ pub struct PanelState {
     pub gerstner: gerstner::GerstnerForm,
     /// Sum of sines' "new wave" form.
     pub sines: sines::SinesForm,
-    /// The TOML editor of every other model.
-    pub model_toml: model_toml::ModelTomlForm,
+    /// Tessendorf's "new wave" form.
+    pub tessendorf: tessendorf::TessendorfForm,
+    /// Airy's "new wave" form.
+    pub airy: airy::AiryForm,
+    /// Steep sines' "new wave" form.
+    pub steep_sines: steep_sines::SteepSinesForm,
+    /// Step sizes of the water's transform buttons.
+    pub water_transform: water_transform::WaterTransformForm,
     /// Why the last model switch failed.
     pub water_message: Option<String>,
     /// File paths and the outcome of the last file operation.
@@ -146,11 +160,6 @@ mod tests {
             let out = show_headless(&mut draft, &mut state, &mut clock);
             assert_eq!(draft, scene, "preset {}", p.name);
             assert_eq!(out, PanelOutput::default());
-            // The TOML editor of the other models keeps the text it shows (a cache, not an edit).
-            if state.model_toml != model_toml::ModelTomlForm::default() {
-                assert_eq!(state.model_toml.text, state.model_toml.source, "preset {}", p.name);
-                state.model_toml = model_toml::ModelTomlForm::default();
-            }
             assert_eq!(state, PanelState::default());
             assert_eq!(clock, Clock::default());
             // And what the panel shows saves to the same file.

@@ -11,7 +11,8 @@ use swell::shading::Shading;
 use swell::water::{GerstnerWave, SineWave};
 use swell::{Error, Result};
 
-use super::{fft_ocean, fields, gerstner, model_toml, sines, springs, PanelState};
+use super::{airy, fft_ocean, fields, gerstner, noise, radial, river, sines, springs, steep_sines, tessendorf};
+use super::{wave_set, PanelState};
 
 /// Shading models the panel offers, in menu order.
 pub const SHADINGS: &[Shading] = &[Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::BlinnPhong];
@@ -93,7 +94,10 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
         }
     }
     table.insert("model".into(), toml::Value::String(name.into()));
-    WaterSpec::from_table(table, "viewer")
+    let mut w = WaterSpec::from_table(table, "viewer")?;
+    // The whole patch carries over, whatever keys it has (placement included).
+    w.surface = surface;
+    Ok(w)
 }
 
 /// Shows the water section; returns whether `water` changed.
@@ -164,7 +168,13 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) 
         WaterModelSpec::Sines(spec) => sines::show(ui, spec, &mut forms.sines),
         WaterModelSpec::Fft(p) => fft_ocean::show(ui, p),
         WaterModelSpec::Springs(p) => springs::show(ui, p, &mut forms.click_drop),
-        other => model_toml::show(ui, other, &mut forms.model_toml),
+        WaterModelSpec::Tessendorf(p) => tessendorf::show(ui, p, &mut forms.tessendorf),
+        WaterModelSpec::WaveSet(p) => wave_set::show(ui, p),
+        WaterModelSpec::Airy(p) => airy::show(ui, p, &mut forms.airy),
+        WaterModelSpec::SteepSines(p) => steep_sines::show(ui, p, &mut forms.steep_sines),
+        WaterModelSpec::Radial(p) => radial::show(ui, p),
+        WaterModelSpec::Noise(p) => noise::show(ui, p),
+        WaterModelSpec::River(p) => river::show(ui, p),
     };
     changed
 }

@@ -1,4 +1,5 @@
-//! Paper 000's wave list, shared by the Gerstner and sum-of-sines panels: edit each wave, delete
+//! Paper 000's wave list, shared by every model made of a list of waves (Gerstner, sines,
+//! Tessendorf, Airy, steep sines): edit each wave, delete
 //! one, clear, add a wave from a form, and regenerate a whole seeded random set within ranges.
 //!
 //! "Regenerate a set" draws the set with the library's [`wave_set`] (a fan of directions around
@@ -19,6 +20,8 @@ pub trait ListedWave: Copy + PartialEq {
     const MAX: usize;
     /// Grid id prefix (unique per model).
     const ID: &'static str;
+    /// Whether "Regenerate a set" offers the shared steepness Q (only models that have one).
+    const REGEN_STEEPNESS: bool = false;
     /// One wave's cells; returns whether any changed.
     fn cells(&mut self, ui: &mut Ui) -> bool;
     /// The model's own check of one wave, naming keys under `key`.
@@ -27,7 +30,8 @@ pub trait ListedWave: Copy + PartialEq {
     fn from_gerstner(w: GerstnerWave) -> Self;
 }
 
-fn cell(ui: &mut Ui, v: &mut f32, speed: f64) -> bool {
+/// One number cell of a wave row; returns whether it changed.
+pub fn cell(ui: &mut Ui, v: &mut f32, speed: f64) -> bool {
     ui.add(DragValue::new(v).speed(speed).max_decimals(4)).changed()
 }
 
@@ -35,6 +39,7 @@ impl ListedWave for GerstnerWave {
     const HEADERS: &'static [&'static str] = &["A m", "L m", "S m/s", "dir x", "dir z", "Q"];
     const MAX: usize = swell::water::MAX_GERSTNER_WAVES;
     const ID: &'static str = "gerstner";
+    const REGEN_STEEPNESS: bool = true;
     fn cells(&mut self, ui: &mut Ui) -> bool {
         cell(ui, &mut self.amplitude, 0.005)
             | cell(ui, &mut self.wavelength, 0.1)
@@ -182,7 +187,7 @@ pub fn show<W: ListedWave>(ui: &mut Ui, waves: &mut Vec<W>, form: &mut WaveListF
             fields::number(ui, "spread (full fan)", &mut s.spread_deg, 1.0, " deg");
             fields::number(ui, "median wavelength", &mut s.median_wavelength, 0.1, " m");
             fields::number(ui, "median amplitude", &mut s.median_amplitude, 0.005, " m");
-            if W::HEADERS.len() > 5 {
+            if W::REGEN_STEEPNESS {
                 fields::number(ui, "steepness Q", &mut s.steepness, 0.01, "");
             }
             ui.label("seed");

@@ -200,6 +200,15 @@ impl Bake {
             .water
             .clone()
             .ok_or_else(|| Error::invalid("water", "the scene has no [water] section: there is nothing to bake"))?;
+        // Maps are the patch's own displacement over its own grid; placing the patch is the
+        // engine's job, and world positions would not line up with the local grid.
+        if !spec.surface.placement()?.is_identity() {
+            return Err(Error::invalid(
+                "water.yaw_deg",
+                "bake writes maps in the patch's own frame: set yaw_deg = 0 and uniform_scale = 1 \
+                 and turn or scale the patch in the engine that uses the maps",
+            ));
+        }
         world.update(f64::from(settings.frames.first) / settings.fps)?;
         let water = world.water.as_ref().expect("a scene with [water] builds a water body");
         let grid = water.mesh.grid;

@@ -11,6 +11,7 @@ mod sky;
 mod terrain_body;
 mod terrain_spec;
 mod water_material;
+mod water_placement;
 mod water_spec;
 mod world;
 
@@ -26,4 +27,5 @@ pub use terrain_spec::{
 };
 pub use water_material::MAX_ABSORPTION;
 pub use water_spec::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
+pub use water_placement::WaterPlacement;
 pub use world::{WaterBody, World};

@@ -4,7 +4,7 @@
 use glam::{Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
-use super::TerrainSpec;
+use super::{TerrainSpec, WaterPlacement};
 use crate::error::Result;
 use crate::math::{GridSpec, Transform};
 use crate::mesh::SurfaceMesh;
@@ -81,13 +81,15 @@ impl TerrainBody {
         self.ground_height(x, z).map(|g| -g)
     }
 
-    /// Fills [`TerrainBody::water_depths`] for the rest positions of the water grid `grid`.
-    pub fn measure_water_depths(&mut self, grid: &GridSpec) {
+    /// Fills [`TerrainBody::water_depths`] for the rest positions of the water grid `grid` (in the
+    /// water's own frame), placed in the world by `placement`.
+    pub fn measure_water_depths(&mut self, grid: &GridSpec, placement: &WaterPlacement) {
         let nx = grid.verts_x();
         self.water_depths = (0..grid.vertex_count())
             .map(|k| {
                 let r = grid.rest_position(k % nx, k / nx);
-                self.depth_at(r.x, r.y).unwrap_or(f32::INFINITY)
+                let w = placement.to_world(glam::Vec3::new(r.x, 0.0, r.y));
+                self.depth_at(w.x, w.z).unwrap_or(f32::INFINITY)
             })
             .collect();
     }

@@ -21,6 +21,7 @@ use serde::{de::DeserializeOwned, Deserialize, Serialize};
 
 use crate::error::{check_finite_vec, Error, Result};
 use crate::math::GridSpec;
+use super::water_placement::WaterPlacement;
 use crate::water::{
     wave_set, Airy, AiryParams, GerstnerTessendorf, NoiseParams, NoiseWaves, RadialWave, RadialWaveParams, River,
     RiverParams, SpringMesh, SpringMeshParams, SteepSines, SteepSinesParams, TessendorfParams, WaveSetParams,
@@ -37,15 +38,36 @@ pub struct WaterSurface {
     pub cells: [u32; 2],
     /// World (x, z) of the patch centre, metres. Default (0, 0).
     pub center: Vec2,
+    /// Turn of the patch and its waves about +Y through `center`, degrees in [-360, 360]
+    /// (counter-clockwise seen from above). Default 0. See [`WaterPlacement`].
+    #[serde(skip_serializing_if = "is_zero")]
+    pub yaw_deg: f32,
+    /// Uniform scale of the patch and its waves (extent and heights) about `center`, in
+    /// (0, 10000]. Default 1. Named so as not to clash with the noise model's `scale`.
+    #[serde(skip_serializing_if = "is_one")]
+    pub uniform_scale: f32,
+}
+
+// Written only when set, so scenes without a transform save exactly as before.
+fn is_zero(v: &f32) -> bool {
+    *v == 0.0
+}
+fn is_one(v: &f32) -> bool {
+    *v == 1.0
 }
 
 impl Default for WaterSurface {
     fn default() -> Self {
-        Self { size: Vec2::splat(200.0), cells: [256, 256], center: Vec2::ZERO }
+        Self { size: Vec2::splat(200.0), cells: [256, 256], center: Vec2::ZERO, yaw_deg: 0.0, uniform_scale: 1.0 }
     }
 }
 
 impl WaterSurface {
+    /// Where the patch sits in the world, checked (keys named under `water`).
+    pub fn placement(&self) -> Result<WaterPlacement> {
+        WaterPlacement::new(self.center, self.yaw_deg, self.uniform_scale)
+    }
+
     /// The sampling grid, checked (keys named under `water`).
     pub fn grid(&self) -> Result<GridSpec> {
         check_finite_vec("water.center", &self.center.to_array())?;
@@ -184,7 +206,7 @@ pub struct WaterSpec {
 }
 
 /// Keys of `[water]` that belong to the patch rather than to the model.
-const SURFACE_KEYS: [&str; 3] = ["size", "cells", "center"];
+const SURFACE_KEYS: [&str; 5] = ["size", "cells", "center", "yaw_deg", "uniform_scale"];
 
 impl WaterSpec {
     /// Reads the `[water]` table; `source` names the file in errors.
@@ -232,6 +254,7 @@ impl WaterSpec {
     /// Checks everything that does not need the model built.
     pub fn validate(&self) -> Result<()> {
         self.surface.grid()?;
+        self.surface.placement()?;
         self.material.validate("water.material")
     }
 }

@@ -1,6 +1,6 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
-use super::{Scene, TerrainBody, WaterMaterial};
+use super::{Scene, TerrainBody, WaterMaterial, WaterPlacement};
 use crate::error::Result;
 use crate::mesh::SurfaceMesh;
 use crate::shading::Texture;
@@ -8,10 +8,14 @@ use crate::water::WaveModel;
 
 /// The water of a [`World`]: the model, the mesh it displaces and the material it is drawn with.
 pub struct WaterBody {
-    /// The wave model, built from the scene.
+    /// The wave model, built from the scene. It works in the patch's own frame: query it through
+    /// [`World::water_height_at`] for world coordinates when the patch is turned or scaled.
     pub model: Box<dyn WaveModel>,
-    /// The displaced grid, updated by [`World::update`].
+    /// The displaced grid in world coordinates, updated by [`World::update`] (its `grid` is the
+    /// patch's own, local grid; see [`WaterPlacement`]).
     pub mesh: SurfaceMesh,
+    /// Where the patch sits: the map from the model's frame to the world.
+    pub placement: WaterPlacement,
     /// How it looks.
     pub material: WaterMaterial,
     /// The material's texture, loaded or generated, if it names one.
@@ -56,14 +60,15 @@ impl World {
             None => None,
         };
         if let (Some(t), Some(w)) = (&mut terrain, &scene.water) {
-            t.measure_water_depths(&w.surface.grid()?);
+            t.measure_water_depths(&w.surface.grid()?, &w.surface.placement()?);
         }
         let water = match &scene.water {
             Some(spec) => {
                 let model = spec.model.build()?;
                 let mesh = SurfaceMesh::new(spec.surface.grid()?);
                 let texture = spec.material.load_texture()?;
-                Some(WaterBody { model, mesh, material: spec.material.clone(), texture })
+                let placement = spec.surface.placement()?;
+                Some(WaterBody { model, mesh, placement, material: spec.material.clone(), texture })
             }
             None => None,
         };
@@ -80,6 +85,7 @@ impl World {
         if let Some(w) = &mut self.water {
             w.model.advance(t)?;
             w.mesh.displace(w.model.as_ref(), t);
+            w.placement.apply(&mut w.mesh);
             check_finite_mesh(&w.mesh, t)?;
         }
         self.time = t;
@@ -92,8 +98,102 @@ impl World {
         self.terrain.as_ref().and_then(|t| t.depth_at(x, z))
     }
 
+    /// Height (m above rest) of the water surface over world (x, z) at the time of the last
+    /// [`World::update`], with the patch's turn and scale applied (the model is asked at the local
+    /// point that lands there; heights scale with the patch). `None` without water. Like the
+    /// models' own [`WaveModel::height_at`], it covers the whole plane, not only the patch.
+    pub fn water_height_at(&self, x: f32, z: f32) -> Option<f32> {
+        let w = self.water.as_ref()?;
+        let l = w.placement.to_local_xz(glam::Vec2::new(x, z));
+        Some(w.placement.to_world_height(w.model.height_at(l.x, l.y, self.time)))
+    }
+
+    /// The local (x, z) of the water's frame under world (x, z): where to apply a model-frame
+    /// operation such as a drop on the spring mesh. The identity without water.
+    pub fn water_local_xz(&self, x: f32, z: f32) -> glam::Vec2 {
+        let p = glam::Vec2::new(x, z);
+        self.water.as_ref().map_or(p, |w| w.placement.to_local_xz(p))
+    }
+
     /// The time of the last [`World::update`], seconds.
     pub fn time(&self) -> f64 {
         self.time
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    /// A small sines sea (no horizontal motion, so heights at mesh vertices are exact), placed by
+    /// the given keys.
+    fn sea(placement: &str) -> World {
+        let text = format!(
+            "version = 1\n[camera]\neye = [0.0, 30.0, 30.0]\ntarget = [0.0, 0.0, 0.0]\n\
+             [water]\nmodel = 'sines'\nsize = [20.0, 12.0]\ncells = [10, 6]\n{placement}\n\
+             [[water.waves]]\namplitude = 0.4\nwavelength = 9.0\nspeed = 3.0\ndirection = [1.0, 0.3]\n\
+             [[water.waves]]\namplitude = 0.2\nwavelength = 4.0\nspeed = 2.0\ndirection = [-0.2, 1.0]\n"
+        );
+        let mut w = World::new(Scene::from_toml(&text, "t").unwrap()).unwrap();
+        w.update(1.3).unwrap();
+        w
+    }
+
+    #[test]
+    fn a_turned_sea_has_the_unturned_sea_s_height_at_the_turned_point() {
+        let plain = sea("");
+        let turned = sea("yaw_deg = 90.0");
+        // Ry(90 deg) carries local +X to world -Z, so world (x, z) shows local (-z, x).
+        for (x, z) in [(1.0, 2.0), (-3.5, 0.7), (7.0, -4.0)] {
+            let (a, b) = (turned.water_height_at(x, z).unwrap(), plain.water_height_at(-z, x).unwrap());
+            assert!((a - b).abs() < 1e-5, "({x}, {z}): {a} vs {b}");
+        }
+        assert!(plain.water_height_at(1.0, 2.0) != turned.water_height_at(1.0, 2.0));
+    }
+
+    #[test]
+    fn the_mesh_is_turned_and_scaled_about_the_centre_and_agrees_with_the_height_query() {
+        let plain = sea("center = [4.0, -2.0]");
+        let placed = sea("center = [4.0, -2.0]\nyaw_deg = 90.0\nuniform_scale = 2.0");
+        let (a, b) = (&plain.water.as_ref().unwrap().mesh, &placed.water.as_ref().unwrap().mesh);
+        let c = Vec3::new(4.0, 0.0, -2.0);
+        for k in 0..a.positions.len() {
+            let d = a.positions[k] - c;
+            // Quarter turn (local +X to -Z, +Z to +X), then twice the size, heights included.
+            let expected = c + 2.0 * Vec3::new(d.z, d.y, -d.x);
+            assert!((b.positions[k] - expected).length() < 1e-4, "vertex {k}: {} vs {expected}", b.positions[k]);
+            let n = a.normals[k];
+            assert!((b.normals[k] - Vec3::new(n.z, n.y, -n.x)).length() < 1e-5);
+            let p = b.positions[k];
+            let h = placed.water_height_at(p.x, p.z).unwrap();
+            assert!((h - p.y).abs() < 1e-4, "vertex {k}: query {h} vs mesh {}", p.y);
+        }
+        // The drop point of a click maps back into the model's frame.
+        let l = placed.water_local_xz(4.0, -4.0);
+        assert!((l - glam::Vec2::new(5.0, -2.0)).length() < 1e-5, "{l}");
+    }
+
+    #[test]
+    fn placement_keys_round_trip_and_bad_values_name_the_key() {
+        let w = sea("yaw_deg = -30.0\nuniform_scale = 0.5");
+        let back = Scene::from_toml(&w.scene.to_toml(), "again").unwrap();
+        assert_eq!(back, w.scene);
+        let s = &back.water.as_ref().unwrap().surface;
+        assert_eq!((s.yaw_deg, s.uniform_scale), (-30.0, 0.5));
+        // Scenes without a transform save without the keys.
+        assert!(!sea("").scene.to_toml().contains("yaw_deg"));
+        for (keys, message) in [
+            ("yaw_deg = 400.0", "water.yaw_deg = 400 is outside [-360, 360]"),
+            ("uniform_scale = -1.0", "water.uniform_scale = -1 is outside (0, 10000]"),
+        ] {
+            let text = format!(
+                "version = 1\n[camera]\neye = [0.0, 30.0, 30.0]\ntarget = [0.0, 0.0, 0.0]\n\
+                 [water]\nmodel = 'noise'\nscale = 3.0\n{keys}\n"
+            );
+            let e = Scene::from_toml(&text, "t").err().unwrap();
+            assert_eq!(e.to_string(), message);
+        }
     }
 }

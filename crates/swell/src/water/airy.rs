@@ -51,6 +51,16 @@ pub struct AiryParams {
     pub dispersion: Dispersion,
 }
 
+impl AiryWave {
+    /// Checks this one wave, naming keys under `key` (e.g. `water.waves[2]`).
+    pub fn validate(&self, key: &str) -> Result<()> {
+        check_non_negative(&format!("{key}.amplitude"), self.amplitude)?;
+        check_positive(&format!("{key}.wavelength"), self.wavelength)?;
+        check_finite_vec(&format!("{key}.phase"), &[self.phase])?;
+        check_direction(&format!("{key}.direction"), self.direction)
+    }
+}
+
 impl AiryParams {
     /// Checks every value, naming keys under `key` (normally `water`).
     pub fn validate(&self, key: &str) -> Result<()> {
@@ -63,11 +73,7 @@ impl AiryParams {
         }
         self.dispersion.validate(&format!("{key}.dispersion"))?;
         for (i, w) in self.waves.iter().enumerate() {
-            let wk = format!("{key}.waves[{i}]");
-            check_non_negative(&format!("{wk}.amplitude"), w.amplitude)?;
-            check_positive(&format!("{wk}.wavelength"), w.wavelength)?;
-            check_finite_vec(&format!("{wk}.phase"), &[w.phase])?;
-            check_direction(&format!("{wk}.direction"), w.direction)?;
+            w.validate(&format!("{key}.waves[{i}]"))?;
         }
         Ok(())
     }

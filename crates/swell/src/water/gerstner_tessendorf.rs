@@ -61,6 +61,26 @@ pub struct TessendorfParams {
     pub loop_period: Option<f32>,
 }
 
+impl TessendorfWave {
+    /// Checks this one wave, naming keys under `key` (e.g. `water.waves[2]`); the whole list's
+    /// `sum k A <= 1` is checked by [`TessendorfParams::validate`].
+    pub fn validate(&self, key: &str) -> Result<()> {
+        check_non_negative(&format!("{key}.amplitude"), self.amplitude)?;
+        check_positive(&format!("{key}.wavelength"), self.wavelength)?;
+        check_finite_vec(&format!("{key}.phase"), &[self.phase])?;
+        check_direction(&format!("{key}.direction"), self.direction)?;
+        let k = TAU / self.wavelength;
+        if k * self.amplitude > 1.0 {
+            return Err(Error::out_of_range(
+                format!("{key}.amplitude"),
+                self.amplitude,
+                format!("[0, {}] (k A <= 1 with k = 2 pi / {} m; above 1 the crest loops)", 1.0 / k, self.wavelength),
+            ));
+        }
+        Ok(())
+    }
+}
+
 impl TessendorfParams {
     /// Checks every value, naming keys under `key` (normally `water`).
     pub fn validate(&self, key: &str) -> Result<()> {
@@ -77,20 +97,8 @@ impl TessendorfParams {
         }
         let mut sum_ka = 0.0;
         for (i, w) in self.waves.iter().enumerate() {
-            let wk = format!("{key}.waves[{i}]");
-            check_non_negative(&format!("{wk}.amplitude"), w.amplitude)?;
-            check_positive(&format!("{wk}.wavelength"), w.wavelength)?;
-            check_finite_vec(&format!("{wk}.phase"), &[w.phase])?;
-            check_direction(&format!("{wk}.direction"), w.direction)?;
-            let k = TAU / w.wavelength;
-            if k * w.amplitude > 1.0 {
-                return Err(Error::out_of_range(
-                    format!("{wk}.amplitude"),
-                    w.amplitude,
-                    format!("[0, {}] (k A <= 1 with k = 2 pi / {} m; above 1 the crest loops)", 1.0 / k, w.wavelength),
-                ));
-            }
-            sum_ka += k * w.amplitude;
+            w.validate(&format!("{key}.waves[{i}]"))?;
+            sum_ka += TAU / w.wavelength * w.amplitude;
         }
         if sum_ka > 1.0 {
             return Err(Error::out_of_range(

@@ -48,6 +48,17 @@ pub struct SteepSinesParams {
     pub waves: Vec<SteepSineWave>,
 }
 
+impl SteepSineWave {
+    /// Checks this one wave, naming keys under `key` (e.g. `water.waves[2]`).
+    pub fn validate(&self, key: &str) -> Result<()> {
+        check_non_negative(&format!("{key}.amplitude"), self.amplitude)?;
+        check_positive(&format!("{key}.frequency"), self.frequency)?;
+        check_non_negative(&format!("{key}.velocity"), self.velocity)?;
+        check_range(&format!("{key}.exponent"), self.exponent, 1.0, MAX_STEEP_SINE_EXPONENT)?;
+        check_direction(&format!("{key}.direction"), self.direction)
+    }
+}
+
 impl SteepSinesParams {
     /// Checks every value, naming keys under `key` (normally `water`).
     pub fn validate(&self, key: &str) -> Result<()> {
@@ -59,12 +70,7 @@ impl SteepSinesParams {
             ));
         }
         for (i, w) in self.waves.iter().enumerate() {
-            let wk = format!("{key}.waves[{i}]");
-            check_non_negative(&format!("{wk}.amplitude"), w.amplitude)?;
-            check_positive(&format!("{wk}.frequency"), w.frequency)?;
-            check_non_negative(&format!("{wk}.velocity"), w.velocity)?;
-            check_range(&format!("{wk}.exponent"), w.exponent, 1.0, MAX_STEEP_SINE_EXPONENT)?;
-            check_direction(&format!("{wk}.direction"), w.direction)?;
+            w.validate(&format!("{key}.waves[{i}]"))?;
         }
         Ok(())
     }

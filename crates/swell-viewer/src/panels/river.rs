@@ -1,0 +1,30 @@
+//! The river panel (`model = "river"`, paper 004): water flowing downstream (+Z) between two
+//! oscillating banks, with optional ripples. Every key of [`RiverParams`] is a widget; the banks may
+//! not touch (`left_offset + left_amplitude < right_offset - right_amplitude`), which validation
+//! refuses with that reason.
+
+use eframe::egui::Ui;
+use swell::water::RiverParams;
+
+use super::fields;
+
+/// Shows every key; returns whether `p` changed.
+pub fn show(ui: &mut Ui, p: &mut RiverParams) -> bool {
+    let mut changed = false;
+    ui.label("River between oscillating banks (paper 004); flows towards +Z");
+    fields::grid("river").show(ui, |ui| {
+        changed |= fields::number(ui, "flow speed", &mut p.flow_speed, 0.05, " m/s");
+        changed |= fields::number(ui, "left bank mean x", &mut p.left_offset, 0.05, " m");
+        changed |= fields::number(ui, "left bank swing >= 0", &mut p.left_amplitude, 0.01, " m");
+        changed |= fields::number(ui, "right bank mean x", &mut p.right_offset, 0.05, " m");
+        changed |= fields::number(ui, "right bank swing >= 0", &mut p.right_amplitude, 0.01, " m");
+        changed |= fields::number(ui, "right bank phase lead", &mut p.right_phase, 0.01, " rad");
+        changed |= fields::number(ui, "bank rate >= 0", &mut p.bank_rate, 0.01, " rad/s");
+        changed |= fields::number(ui, "bank phase at t = 0", &mut p.bank_phase, 0.01, " rad");
+        changed |= fields::number(ui, "bank wavenumber q >= 0", &mut p.bank_wavenumber, 0.01, " rad/m");
+        changed |= fields::number(ui, "texture repeat length > 0", &mut p.texture_length, 0.05, " m");
+        changed |= fields::number(ui, "ripple amplitude >= 0", &mut p.ripple_amplitude, 0.005, " m");
+        changed |= fields::number(ui, "ripple wavelength > 0", &mut p.ripple_wavelength, 0.01, " m");
+    });
+    changed
+}

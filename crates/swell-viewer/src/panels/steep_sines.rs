@@ -1,0 +1,65 @@
+//! The steep-sines panel (`model = "steep-sines"`, paper 003 §1.1.2's `A ((sin S + 1) / 2)^k`):
+//! each wave's amplitude, spatial frequency, crest speed, direction and sharpness exponent k. The
+//! list is [`super::wave_list`].
+
+use std::f32::consts::TAU;
+
+use eframe::egui::Ui;
+use glam::Vec2;
+use swell::water::{GerstnerWave, SteepSineWave, SteepSinesParams, MAX_STEEP_SINE_WAVES};
+use swell::Result;
+
+use super::wave_list::{self, cell, ListedWave, WaveListForm};
+
+/// What the panel remembers between frames.
+pub type SteepSinesForm = WaveListForm<SteepSineWave>;
+
+/// Sharpness exponent k given to generated waves: paper 003's figures use small k; 2 narrows the
+/// crests visibly without spikes.
+pub const GENERATED_EXPONENT: f32 = 2.0;
+
+impl ListedWave for SteepSineWave {
+    const HEADERS: &'static [&'static str] = &["A m", "freq rad/m", "v m/s", "dir x", "dir z", "k"];
+    const MAX: usize = MAX_STEEP_SINE_WAVES;
+    const ID: &'static str = "steep-sines";
+    fn cells(&mut self, ui: &mut Ui) -> bool {
+        cell(ui, &mut self.amplitude, 0.005)
+            | cell(ui, &mut self.frequency, 0.005)
+            | cell(ui, &mut self.velocity, 0.05)
+            | cell(ui, &mut self.direction.x, 0.01)
+            | cell(ui, &mut self.direction.y, 0.01)
+            | cell(ui, &mut self.exponent, 0.05)
+    }
+    fn check(&self, key: &str) -> Result<()> {
+        self.validate(key)
+    }
+    /// freq = 2 pi / L (the model's definition) and the wave's own speed.
+    fn from_gerstner(w: GerstnerWave) -> Self {
+        SteepSineWave {
+            amplitude: w.amplitude,
+            frequency: TAU / w.wavelength,
+            velocity: w.speed,
+            direction: w.direction,
+            exponent: GENERATED_EXPONENT,
+        }
+    }
+}
+
+impl Default for WaveListForm<SteepSineWave> {
+    fn default() -> Self {
+        // A 20 m deep-water wave (freq 2 pi / 20, speed sqrt(g L / 2 pi)).
+        WaveListForm::new(SteepSineWave {
+            amplitude: 0.24,
+            frequency: TAU / 20.0,
+            velocity: 5.59,
+            direction: Vec2::X,
+            exponent: GENERATED_EXPONENT,
+        })
+    }
+}
+
+/// Shows the wave list; returns whether `p` changed.
+pub fn show(ui: &mut Ui, p: &mut SteepSinesParams, form: &mut SteepSinesForm) -> bool {
+    ui.label("Steep sines A ((sin S + 1) / 2)^k (paper 003 §1.1.2); freq = 2 pi / wavelength, k in [1, 64]");
+    wave_list::show(ui, &mut p.waves, form)
+}
