@@ -76,11 +76,15 @@ impl SceneEditor {
 
     /// Drops a dent `depth` m deep and `radius` m wide on the water at world (x, z) (a click on the
     /// view) and redisplaces the mesh at the current time. Returns false, changing nothing, when
-    /// there is no water or its model has no state to disturb (closed-form models).
+    /// there is no water or its model has no state to disturb (closed-form models). A turned or
+    /// scaled patch gets the dent at the model-frame point under the click, sized so that it is
+    /// `depth` x `radius` in the world.
     pub fn disturb_water(&mut self, x: f32, z: f32, depth: f32, radius: f32) -> Result<bool> {
         let time = self.world.time();
+        let local = self.world.water_local_xz(x, z);
         let Some(w) = &mut self.world.water else { return Ok(false) };
-        if !w.model.disturb(x, z, depth, radius)? {
+        let s = w.placement.scale;
+        if !w.model.disturb(local.x, local.y, depth / s, radius / s)? {
             return Ok(false);
         }
         self.world.update(if time.is_finite() { time } else { 0.0 })?;
@@ -254,6 +258,19 @@ mod tests {
         let mut sea = sea();
         assert!(!sea.disturb_water(0.0, 0.0, 0.5, 1.0).unwrap());
         assert_eq!(sea.revision(), 0);
+    }
+
+    #[test]
+    fn a_click_on_a_turned_and_scaled_spring_mesh_dents_the_water_under_it() {
+        let mut scene = preset("springs").unwrap();
+        let s = &mut scene.water.as_mut().unwrap().surface;
+        (s.yaw_deg, s.uniform_scale) = (90.0, 2.0);
+        let mut e = SceneEditor::new(scene).unwrap();
+        e.world_mut().update(1.0).unwrap();
+        let before = e.world_mut().water_height_at(2.0, -3.0).unwrap();
+        assert!(e.disturb_water(2.0, -3.0, 0.5, 1.0).unwrap());
+        let after = e.world_mut().water_height_at(2.0, -3.0).unwrap();
+        assert!((before - after - 0.5).abs() < 2e-3, "{before} -> {after}");
     }
 
     #[test]

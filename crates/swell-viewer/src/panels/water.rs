@@ -12,7 +12,7 @@ use swell::water::{GerstnerWave, SineWave};
 use swell::{Error, Result};
 
 use super::{airy, fft_ocean, fields, gerstner, noise, radial, river, sines, springs, steep_sines, tessendorf};
-use super::{wave_set, PanelState};
+use super::{wave_set, water_transform, PanelState};
 
 /// Shading models the panel offers, in menu order.
 pub const SHADINGS: &[Shading] = &[Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::BlinnPhong];
@@ -162,6 +162,7 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) 
         );
         ui.end_row();
     });
+    changed |= water_transform::show(ui, &mut w.surface, &mut forms.water_transform);
     ui.separator();
     changed |= match &mut w.model {
         WaterModelSpec::Gerstner(spec) => gerstner::show(ui, spec, &mut forms.gerstner),
