@@ -45,3 +45,43 @@ pub fn show(ui: &mut Ui, p: &mut AiryParams, form: &mut AiryForm) -> bool {
     fields::grid("airy").show(ui, |ui| changed |= dispersion::show(ui, &mut p.dispersion));
     changed | wave_list::show(ui, &mut p.waves, form)
 }
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::WaterModelSpec;
+    use swell::spectrum::Dispersion;
+
+    use super::super::test_support::{commit, scene_with};
+    use super::*;
+
+    fn params(m: &mut WaterModelSpec) -> &mut AiryParams {
+        match m {
+            WaterModelSpec::Airy(p) => p,
+            other => panic!("not airy: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_wave_list_and_dispersion_edit_save_and_load_and_bad_ones_are_refused() {
+        let scene = scene_with("airy");
+        let mut form = AiryForm::default();
+        let shown = commit(&scene, |m| {
+            let p = params(m);
+            form.set.count = 6;
+            form.regenerate(&mut p.waves).unwrap();
+            p.waves[0].phase = -0.5;
+            p.dispersion = dispersion::switch_dispersion(p.dispersion, "capillary");
+        })
+        .unwrap();
+        let WaterModelSpec::Airy(p) = &shown.water.as_ref().unwrap().model else { unreachable!() };
+        assert_eq!((p.waves.len(), p.waves[0].phase), (6, -0.5));
+        assert!(matches!(p.dispersion, Dispersion::Capillary { .. }));
+        let e = commit(&shown, |m| params(m).waves[3].wavelength = 0.0).unwrap_err();
+        assert_eq!(e, "water.waves[3].wavelength = 0 is outside (0, inf)");
+        let e = commit(&shown, |m| params(m).dispersion = Dispersion::FiniteDepth { depth: -2.0 }).unwrap_err();
+        assert_eq!(e, "water.dispersion.depth = -2 is outside (0, inf)");
+        form.new_wave.direction = Vec2::ZERO;
+        assert!(form.add_to(&mut params(&mut shown.water.clone().unwrap().model).waves).is_err());
+        assert!(form.message.as_deref().unwrap().starts_with("water.waves[6].direction"));
+    }
+}

@@ -35,10 +35,11 @@ pub fn switch_dispersion(d: Dispersion, name: &str) -> Dispersion {
 /// otherwise). Returns whether `d` changed.
 pub fn show(ui: &mut Ui, d: &mut Dispersion) -> bool {
     let mut name = dispersion_name(d);
-    let options = [("deep", "deep: w² = g k"), ("finite-depth", "finite depth: w² = g k tanh kD"), (
-        "capillary",
-        "capillary: w² = (g k + σ/ρ k³) tanh kD",
-    )];
+    let options = [
+        ("deep", "deep: w² = g k"),
+        ("finite-depth", "finite depth: w² = g k tanh kD"),
+        ("capillary", "capillary: w² = (g k + σ/ρ k³) tanh kD"),
+    ];
     let mut changed = false;
     if fields::choice(ui, "dispersion", &mut name, &options) {
         *d = switch_dispersion(*d, name);

@@ -135,14 +135,29 @@ pub fn flag(ui: &mut Ui, label: &str, value: &mut bool) -> bool {
     changed
 }
 
-/// A labelled 64-bit seed with a "next" button (seed + 1, wrapping); returns whether it changed.
+/// Largest seed a scene file can hold: TOML integers are signed 64-bit, so a larger `u64` seed
+/// could be typed but not saved.
+pub const MAX_SEED: u64 = i64::MAX as u64;
+
+/// The seed after `seed`, wrapping to 0 past [`MAX_SEED`].
+pub fn next_seed(seed: u64) -> u64 {
+    if seed >= MAX_SEED {
+        0
+    } else {
+        seed + 1
+    }
+}
+
+/// A labelled 64-bit seed in [0, [`MAX_SEED`]] with a "next" button (seed + 1, wrapping); returns
+/// whether it changed. Unlike the other fields this one holds its range in the widget: a seed
+/// has no invalid values to explain, only ones a file cannot store.
 pub fn seed(ui: &mut Ui, label: &str, value: &mut u64) -> bool {
     ui.label(label);
     let changed = ui
         .horizontal(|ui| {
-            let mut changed = ui.add(DragValue::new(value).speed(1.0)).changed();
+            let mut changed = ui.add(DragValue::new(value).speed(1.0).range(0..=MAX_SEED)).changed();
             if ui.small_button("next").on_hover_text("seed + 1").clicked() {
-                *value = value.wrapping_add(1);
+                *value = next_seed(*value);
                 changed = true;
             }
             changed

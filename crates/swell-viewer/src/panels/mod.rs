@@ -144,6 +144,45 @@ pub(crate) fn show_headless(draft: &mut Scene, state: &mut PanelState, clock: &m
     out
 }
 
+/// What the model panels' tests share: a small scene with a given model, and committing an edit of
+/// its model the way the viewer does (draft, then [`crate::editor::SceneEditor::apply`]).
+#[cfg(test)]
+pub(crate) mod test_support {
+    use swell::scene::{preset, Scene, WaterModelSpec};
+
+    use crate::editor::SceneEditor;
+
+    /// The `sea` preset with its water switched to `model` (defaults) on a coarse grid.
+    pub fn scene_with(model: &str) -> Scene {
+        let mut scene = preset("sea").unwrap();
+        let mut w = super::water::switch_model(scene.water.as_ref(), model).unwrap();
+        w.surface.cells = [16, 16];
+        scene.water = Some(w);
+        scene
+    }
+
+    /// Applies `edit` to the model of `scene` as a panel would and commits it through the editor:
+    /// the committed scene, checked to save and load back unchanged, or the refusal shown at the
+    /// top of the panel (the shown scene then unchanged).
+    pub fn commit(scene: &Scene, edit: impl FnOnce(&mut WaterModelSpec)) -> Result<Scene, String> {
+        let mut editor = SceneEditor::new(scene.clone()).unwrap();
+        edit(&mut editor.draft.water.as_mut().unwrap().model);
+        match editor.apply() {
+            Ok(()) => {
+                let shown = editor.scene().clone();
+                assert_eq!(shown, editor.draft);
+                assert_eq!(Scene::from_toml(&shown.to_toml(), "t").unwrap(), shown);
+                Ok(shown)
+            }
+            Err(e) => {
+                assert_eq!(editor.scene(), scene);
+                assert_eq!(editor.error(), Some(e.to_string().as_str()));
+                Err(e.to_string())
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use swell::scene::{preset, PRESETS};

@@ -28,3 +28,37 @@ pub fn show(ui: &mut Ui, p: &mut RiverParams) -> bool {
     });
     changed
 }
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::WaterModelSpec;
+
+    use super::super::test_support::{commit, scene_with};
+    use super::*;
+
+    fn params(m: &mut WaterModelSpec) -> &mut RiverParams {
+        match m {
+            WaterModelSpec::River(p) => p,
+            other => panic!("not river: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn every_key_edits_saves_and_loads_and_touching_banks_are_refused() {
+        let scene = scene_with("river");
+        let shown = commit(&scene, |m| {
+            let p = params(m);
+            (p.flow_speed, p.left_offset, p.left_amplitude, p.right_offset, p.right_amplitude) =
+                (1.5, -3.0, 0.4, 1.0, 0.3);
+            (p.right_phase, p.bank_rate, p.bank_phase, p.bank_wavenumber) = (0.2, 0.8, 0.1, 0.5);
+            (p.texture_length, p.ripple_amplitude, p.ripple_wavelength) = (3.0, 0.02, 0.5);
+        })
+        .unwrap();
+        let WaterModelSpec::River(p) = &shown.water.as_ref().unwrap().model else { unreachable!() };
+        assert_eq!((p.flow_speed, p.ripple_amplitude), (1.5, 0.02));
+        let e = commit(&shown, |m| params(m).right_offset = -2.5).unwrap_err();
+        assert!(e.contains("water.right_offset"), "{e}");
+        let e = commit(&shown, |m| params(m).texture_length = 0.0).unwrap_err();
+        assert_eq!(e, "water.texture_length = 0 is outside (0, inf)");
+    }
+}

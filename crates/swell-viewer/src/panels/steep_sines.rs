@@ -63,3 +63,46 @@ pub fn show(ui: &mut Ui, p: &mut SteepSinesParams, form: &mut SteepSinesForm) ->
     ui.label("Steep sines A ((sin S + 1) / 2)^k (paper 003 §1.1.2); freq = 2 pi / wavelength, k in [1, 64]");
     wave_list::show(ui, &mut p.waves, form)
 }
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::WaterModelSpec;
+
+    use super::super::test_support::{commit, scene_with};
+    use super::*;
+
+    fn params(m: &mut WaterModelSpec) -> &mut SteepSinesParams {
+        match m {
+            WaterModelSpec::SteepSines(p) => p,
+            other => panic!("not steep sines: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_wave_list_edits_save_and_load_and_bad_ones_are_refused() {
+        let scene = scene_with("steep-sines");
+        let mut form = SteepSinesForm::default();
+        let shown = commit(&scene, |m| {
+            let p = params(m);
+            p.waves.clear();
+            form.regenerate(&mut p.waves).unwrap();
+            form.new_wave.exponent = 8.0;
+            form.add_to(&mut p.waves).unwrap();
+        })
+        .unwrap();
+        let WaterModelSpec::SteepSines(p) = &shown.water.as_ref().unwrap().model else { unreachable!() };
+        assert_eq!(p.waves.len(), form.set.count as usize + 1);
+        // A generated wave keeps its wavelength as freq = 2 pi / L and its speed.
+        for w in &p.waves[..form.set.count as usize] {
+            assert_eq!(w.exponent, GENERATED_EXPONENT);
+            let l = TAU / w.frequency;
+            assert!(l > 0.0 && w.velocity > 0.0);
+        }
+        let e = commit(&shown, |m| params(m).waves[0].exponent = 100.0).unwrap_err();
+        assert_eq!(e, "water.waves[0].exponent = 100 is outside [1, 64]");
+        form.new_wave.velocity = -1.0;
+        let mut waves = p.waves.clone();
+        assert!(form.add_to(&mut waves).is_err());
+        assert!(form.message.as_deref().unwrap().contains(".velocity = -1"), "{:?}", form.message);
+    }
+}

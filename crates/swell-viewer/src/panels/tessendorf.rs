@@ -56,9 +56,68 @@ pub fn show(ui: &mut Ui, p: &mut TessendorfParams, form: &mut TessendorfForm) ->
     ui.label("Tessendorf's Gerstner waves (paper 003 §1.2.1); speeds follow from the dispersion relation");
     fields::grid("tessendorf").show(ui, |ui| {
         changed |= dispersion::show(ui, &mut p.dispersion);
-        changed |=
-            fields::optional_number(ui, "loop period (off: none)", &mut p.loop_period, DEFAULT_LOOP_PERIOD_S, 0.5, " s");
+        changed |= fields::optional_number(
+            ui,
+            "loop period (off: none)",
+            &mut p.loop_period,
+            DEFAULT_LOOP_PERIOD_S,
+            0.5,
+            " s",
+        );
     });
     ui.label(format!("sum of k A = {:.3} (at most 1, or the surface folds)", sum_ka(&p.waves)));
     changed | wave_list::show(ui, &mut p.waves, form)
+}
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::WaterModelSpec;
+    use swell::spectrum::Dispersion;
+
+    use super::super::test_support::{commit, scene_with};
+    use super::*;
+
+    fn params(m: &mut WaterModelSpec) -> &mut TessendorfParams {
+        match m {
+            WaterModelSpec::Tessendorf(p) => p,
+            other => panic!("not tessendorf: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_wave_list_and_keys_edit_save_and_load_and_bad_ones_are_refused() {
+        let scene = scene_with("tessendorf");
+        let mut form = TessendorfForm::default();
+        let shown = commit(&scene, |m| {
+            let p = params(m);
+            form.add_to(&mut p.waves).unwrap();
+            form.new_wave.direction = Vec2::new(0.3, 1.0);
+            form.new_wave.phase = 1.2;
+            form.add_to(&mut p.waves).unwrap();
+            p.dispersion = dispersion::switch_dispersion(p.dispersion, "finite-depth");
+            p.loop_period = Some(DEFAULT_LOOP_PERIOD_S);
+        })
+        .unwrap();
+        let WaterModelSpec::Tessendorf(p) = &shown.water.as_ref().unwrap().model else { unreachable!() };
+        assert_eq!((p.waves.len(), p.waves[1].phase), (2, 1.2));
+        assert_eq!(p.dispersion, Dispersion::FiniteDepth { depth: dispersion::DEFAULT_DEPTH_M });
+        // A regenerated set is a valid Tessendorf list (speeds come from the dispersion relation).
+        commit(&shown, |m| form.regenerate(&mut params(m).waves).unwrap()).unwrap();
+        // One wave that loops is refused when added, naming its key ...
+        form.new_wave.amplitude = 5.0;
+        let mut waves = p.waves.clone();
+        assert!(form.add_to(&mut waves).is_err());
+        assert!(form.message.as_deref().unwrap().starts_with("water.waves[2].amplitude = 5 is outside"));
+        // ... and a list that folds as a whole is refused on commit, naming the list.
+        let e = commit(&shown, |m| {
+            let w = &mut params(m).waves;
+            for x in w.iter_mut() {
+                x.amplitude = 0.9 * x.wavelength / TAU;
+            }
+        })
+        .unwrap_err();
+        assert!(e.starts_with("water.waves = sum of k A"), "{e}");
+        let e = commit(&shown, |m| params(m).loop_period = Some(-1.0)).unwrap_err();
+        assert_eq!(e, "water.loop_period = -1 is outside (0, inf)");
+    }
 }

@@ -12,7 +12,7 @@ use swell::water::{GerstnerWave, SineWave};
 use swell::{Error, Result};
 
 use super::{airy, fft_ocean, fields, gerstner, noise, radial, river, sines, springs, steep_sines, tessendorf};
-use super::{wave_set, water_transform, PanelState};
+use super::{water_transform, wave_set, PanelState};
 
 /// Shading models the panel offers, in menu order.
 pub const SHADINGS: &[Shading] = &[Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::BlinnPhong];

@@ -191,7 +191,7 @@ pub fn show<W: ListedWave>(ui: &mut Ui, waves: &mut Vec<W>, form: &mut WaveListF
                 fields::number(ui, "steepness Q", &mut s.steepness, 0.01, "");
             }
             ui.label("seed");
-            ui.add(DragValue::new(&mut s.seed));
+            ui.add(DragValue::new(&mut s.seed).range(0..=fields::MAX_SEED));
             ui.end_row();
         });
         ui.horizontal(|ui| {
@@ -199,7 +199,7 @@ pub fn show<W: ListedWave>(ui: &mut Ui, waves: &mut Vec<W>, form: &mut WaveListF
                 changed = true;
             }
             if ui.button("Next seed").on_hover_text("Regenerate with seed + 1").clicked() {
-                form.set.seed = form.set.seed.wrapping_add(1);
+                form.set.seed = fields::next_seed(form.set.seed);
                 if form.regenerate(waves).is_ok() {
                     changed = true;
                 }

@@ -24,3 +24,36 @@ pub fn show(ui: &mut Ui, p: &mut WaveSetParams) -> bool {
     });
     changed
 }
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::WaterModelSpec;
+
+    use super::super::test_support::{commit, scene_with};
+    use super::*;
+
+    fn params(m: &mut WaterModelSpec) -> &mut WaveSetParams {
+        match m {
+            WaterModelSpec::WaveSet(p) => p,
+            other => panic!("not a wave set: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn every_key_edits_saves_and_loads_and_bad_ones_are_refused() {
+        let scene = scene_with("wave-set");
+        let shown = commit(&scene, |m| {
+            let p = params(m);
+            (p.count, p.wind_direction_deg, p.spread_deg) = (20, 135.0, 90.0);
+            (p.median_wavelength, p.median_amplitude, p.steepness, p.seed) = (35.0, 0.3, 0.4, 99);
+            p.dispersion = dispersion::switch_dispersion(p.dispersion, "finite-depth");
+        })
+        .unwrap();
+        let WaterModelSpec::WaveSet(p) = &shown.water.as_ref().unwrap().model else { unreachable!() };
+        assert_eq!((p.count, p.seed), (20, 99));
+        let e = commit(&shown, |m| params(m).count = 0).unwrap_err();
+        assert_eq!(e, format!("water.count = 0 is outside [1, {MAX_GERSTNER_WAVES}]"));
+        let e = commit(&shown, |m| params(m).spread_deg = 400.0).unwrap_err();
+        assert_eq!(e, "water.spread_deg = 400 is outside [0, 360]");
+    }
+}

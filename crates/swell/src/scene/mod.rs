@@ -26,6 +26,6 @@ pub use terrain_spec::{
     HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,
 };
 pub use water_material::MAX_ABSORPTION;
-pub use water_spec::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
 pub use water_placement::WaterPlacement;
+pub use water_spec::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
 pub use world::{WaterBody, World};

@@ -19,9 +19,9 @@
 use glam::Vec2;
 use serde::{de::DeserializeOwned, Deserialize, Serialize};
 
+use super::water_placement::WaterPlacement;
 use crate::error::{check_finite_vec, Error, Result};
 use crate::math::GridSpec;
-use super::water_placement::WaterPlacement;
 use crate::water::{
     wave_set, Airy, AiryParams, GerstnerTessendorf, NoiseParams, NoiseWaves, RadialWave, RadialWaveParams, River,
     RiverParams, SpringMesh, SpringMeshParams, SteepSines, SteepSinesParams, TessendorfParams, WaveSetParams,
