@@ -35,13 +35,16 @@
 //!
 //! ## Adding a panel for a water model
 //!
-//! Follow `panels/fft_ocean.rs` or `panels/springs.rs` (or `panels/wave_list.rs` for a list):
+//! Follow `panels/fft_ocean.rs` or `panels/river.rs` (or `panels/tessendorf.rs` for a list of waves,
+//! which implements `panels::wave_list::ListedWave` for its wave type):
 //!
 //! 1. Create `panels/<model>.rs` with
 //!    `pub fn show(ui: &mut Ui, spec: &mut <Model>Spec, form: &mut <Model>Form) -> bool`, using the
 //!    field editors of [`panels::fields`] (one `label | editor` row each, no clamping: validation
 //!    refuses bad values with the reason). Put edit operations that are more than setting a field
-//!    (add a wave, regenerate, drop a disturbance) in plain functions beside it and unit-test them.
+//!    (add a wave, regenerate, drop a disturbance) in plain functions beside it and unit-test them;
+//!    `panels::test_support::commit` applies an edit the way the viewer does (draft, validate,
+//!    commit or refuse) and checks that the committed scene saves and loads back unchanged.
 //! 2. Add `pub mod <model>;` to `panels/mod.rs` and, if it needs one, its form to
 //!    [`panels::PanelState`].
 //! 3. Add one arm to the `match` at the end of [`panels::water::show`] (the compiler asks for it
