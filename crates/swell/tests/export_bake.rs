@@ -458,3 +458,16 @@ fn tiled_maps_leave_out_the_repeated_last_column_and_row() {
         assert_eq!(cropped, b, "{map}");
     }
 }
+
+#[test]
+fn a_turned_or_scaled_patch_is_refused_by_bake_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    for key in ["yaw_deg = 30.0", "uniform_scale = 2.0"] {
+        let text = SEA.replace("center = [5.0, -2.0]", &format!("center = [5.0, -2.0]\n{key}"));
+        let mut w = World::new(Scene::from_toml(&text, "test").unwrap()).unwrap();
+        let s = BakeSettings::new(FrameRange::new("f", 0, 1).unwrap());
+        let e = Bake::prepare(&mut w, dir.path(), s).err().unwrap().to_string();
+        assert!(e.starts_with("water.yaw_deg") && e.contains("uniform_scale = 1"), "{e}");
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+}

@@ -25,7 +25,9 @@ use crate::error::{check_finite_vec, check_range, Error, Result};
 use crate::math::MAX_SCALE;
 use crate::mesh::SurfaceMesh;
 
-/// A checked water placement: centre, turn and uniform scale (see the [module docs](self)).
+/// A checked water placement: centre, turn and uniform scale, mapping the model's frame to the
+/// world as `world = c + s Ry(yaw) (local - c)`, `c = (center.x, 0, center.z)` (paper 000's object
+/// transform without X/Z turns; see `docs/scene-format.md`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WaterPlacement {
     /// Pivot (x, z) in world metres: the patch centre.
@@ -105,6 +107,20 @@ mod tests {
             let w = p.to_world(Vec3::new(q.x, 0.0, q.y));
             assert!((p.to_local_xz(Vec2::new(w.x, w.z)) - q).length() < 1e-4);
         }
+    }
+
+    #[test]
+    fn placing_a_mesh_is_bit_identical_on_one_and_two_threads() {
+        let p = WaterPlacement::new(Vec2::new(1.5, -0.5), 33.0, 1.7).unwrap();
+        let run = |n: usize| {
+            let mut m = SurfaceMesh::new(GridSpec::centered(Vec2::splat(9.0), 40, 40).unwrap());
+            for (k, q) in m.positions.iter_mut().enumerate() {
+                q.y = (k as f32 * 0.37).sin();
+            }
+            rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap().install(|| p.apply(&mut m));
+            (m.positions, m.normals)
+        };
+        assert_eq!(run(1), run(2));
     }
 
     #[test]
