@@ -1,5 +1,5 @@
 //! The water panel: which model (or none), the patch and its grid resolution, the material, and
-//! the active model's own panel.
+//! the patch's transform ([`super::water_transform`]) and the active model's own panel.
 //!
 //! Adding a model's panel: write `panels/<model>.rs` with `show(ui, &mut <Model>Spec, &mut
 //! <Model>Form) -> bool`, add its form to [`super::PanelState`] and one arm to the `match` in
