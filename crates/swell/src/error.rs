@@ -111,6 +111,16 @@ pub fn check_non_negative(key: &str, value: f32) -> Result<()> {
     }
 }
 
+/// Checks that a seed fits a TOML integer, [0, i64::MAX], naming `key`: scene files store seeds,
+/// and a larger one could not be saved.
+pub fn check_seed(key: &str, seed: u64) -> Result<()> {
+    if seed <= i64::MAX as u64 {
+        Ok(())
+    } else {
+        Err(Error::out_of_range(key, seed, format!("[0, {}]", i64::MAX)))
+    }
+}
+
 /// Checks an integer count `lo <= value <= hi`, naming `key` in the error.
 pub fn check_count(key: &str, value: u32, lo: u32, hi: u32) -> Result<()> {
     if (lo..=hi).contains(&value) {

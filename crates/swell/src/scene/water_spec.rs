@@ -285,9 +285,27 @@ pub(crate) fn deserialize_at<T: DeserializeOwned>(
 mod tests {
     use super::*;
     use crate::shading::Shading;
+    use crate::water::DropSchedule;
 
     fn parse(text: &str) -> Result<WaterSpec> {
         WaterSpec::from_table(toml::from_str(text).unwrap(), "test")
+    }
+
+    #[test]
+    fn seeds_a_scene_file_cannot_store_are_refused_not_panicked_on() {
+        let too_big = i64::MAX as u64 + 1;
+        let models = [
+            WaterModelSpec::WaveSet(WaveSetParams { seed: too_big, ..Default::default() }),
+            WaterModelSpec::Noise(NoiseParams { seed: too_big, ..Default::default() }),
+            WaterModelSpec::Springs(SpringMeshParams {
+                drops: Some(DropSchedule { interval: 1.0, radius: 1.0, depth: 0.1, seed: too_big }),
+                ..Default::default()
+            }),
+        ];
+        for model in models {
+            let e = model.build().err().expect("a seed above i64::MAX is refused").to_string();
+            assert!(e.contains("seed") && e.contains(&too_big.to_string()), "{e}");
+        }
     }
 
     #[test]

@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use super::lattice_random::LatticeRandom;
 use super::smoothing::{smooth, MAX_SMOOTHING_PASSES};
-use crate::error::{check_count, check_finite_vec, check_non_negative, check_range, Error, Result};
+use crate::error::{check_count, check_finite_vec, check_non_negative, check_range, check_seed, Error, Result};
 
 /// Largest offset range (m) a scene may ask for; ten times Everest's height above sea level.
 pub const MAX_AMPLITUDE: f32 = 1.0e5;
@@ -87,15 +87,6 @@ impl DiamondSquareParams {
         check_range(&format!("{key}.roughness"), self.roughness, 0.0, 1.0)?;
         check_count(&format!("{key}.smoothing"), self.smoothing, 0, MAX_SMOOTHING_PASSES)?;
         check_seed(&format!("{key}.seed"), self.seed)
-    }
-}
-
-/// Checks that a seed fits a TOML integer (scene files store it), naming `key`.
-pub(crate) fn check_seed(key: &str, seed: u64) -> Result<()> {
-    if seed <= i64::MAX as u64 {
-        Ok(())
-    } else {
-        Err(Error::out_of_range(key, seed, format!("[0, {}]", i64::MAX)))
     }
 }
 

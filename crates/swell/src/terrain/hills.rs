@@ -11,8 +11,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use super::diamond_square::{check_seed, MAX_AMPLITUDE};
+use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
+use crate::error::check_seed;
 use crate::error::{check_count, check_positive, check_range, Error, Result};
 
 /// Most hills one terrain may have.

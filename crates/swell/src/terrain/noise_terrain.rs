@@ -7,8 +7,9 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::diamond_square::{check_seed, MAX_AMPLITUDE};
+use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
+use crate::error::check_seed;
 use crate::error::{check_count, check_positive, check_range, Result};
 use crate::math::Perlin;
 

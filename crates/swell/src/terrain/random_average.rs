@@ -10,10 +10,11 @@
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
-use super::diamond_square::{check_seed, MAX_AMPLITUDE};
+use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use super::lattice_random::lattice_random;
 use super::smoothing::{smooth, MAX_SMOOTHING_PASSES};
+use crate::error::check_seed;
 use crate::error::{check_count, check_range, Result};
 
 /// Parameters of the random-then-average generator; `[terrain]` keys for `generator = "random-average"`.

@@ -19,7 +19,9 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
-use crate::error::{check_count, check_finite_vec, check_non_negative, check_positive, check_range, Result};
+use crate::error::{
+    check_count, check_finite_vec, check_non_negative, check_positive, check_range, check_seed, Result,
+};
 use crate::math::{GridSpec, Perlin};
 
 /// Most fBm octaves (beyond 12 the finest octave is far below any grid cell).
@@ -71,7 +73,8 @@ impl NoiseParams {
         check_range(&format!("{key}.persistence"), self.persistence, f32::MIN_POSITIVE, 1.0)?;
         check_range(&format!("{key}.lacunarity"), self.lacunarity, 1.0, 4.0)?;
         check_finite_vec(&format!("{key}.drift"), &self.drift.to_array())?;
-        check_non_negative(&format!("{key}.evolution"), self.evolution)
+        check_non_negative(&format!("{key}.evolution"), self.evolution)?;
+        check_seed(&format!("{key}.seed"), self.seed)
     }
 }
 

@@ -39,7 +39,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::WaveModel;
-use crate::error::{check_count, check_non_negative, check_positive, check_range, Error, Result};
+use crate::error::{check_count, check_non_negative, check_positive, check_range, check_seed, Error, Result};
 use crate::math::GridSpec;
 
 /// Most lattice cells along one side.
@@ -171,6 +171,7 @@ impl SpringMeshParams {
             check_positive(&format!("{key}.drops.interval"), d.interval)?;
             check_positive(&format!("{key}.drops.radius"), d.radius)?;
             check_non_negative(&format!("{key}.drops.depth"), d.depth)?;
+            check_seed(&format!("{key}.drops.seed"), d.seed)?;
         }
         Ok(())
     }

@@ -20,7 +20,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
 use super::gerstner::{GerstnerWave, MAX_GERSTNER_WAVES};
-use crate::error::{check_count, check_non_negative, check_positive, check_range, Error, Result};
+use crate::error::{check_count, check_non_negative, check_positive, check_range, check_seed, Error, Result};
 use crate::spectrum::Dispersion;
 
 /// Parameters of [`wave_set`]. In a scene file: `model = "wave-set"` with these keys in `[water]`.
@@ -84,6 +84,7 @@ impl WaveSetParams {
         }
         check_count(&format!("{key}.count"), self.count, 1, MAX_GERSTNER_WAVES as u32)?;
         check_range(&format!("{key}.steepness"), self.steepness, 0.0, 1.0)?;
+        check_seed(&format!("{key}.seed"), self.seed)?;
         self.dispersion.validate(&format!("{key}.dispersion"))
     }
 }
