@@ -336,7 +336,7 @@ impl ViewerApp {
     }
 
     /// Renders a new frame if anything it depends on changed (always, in the scripted mode).
-    fn draw_view(&mut self, ctx: &egui::Context, size: [u32; 2], frame_dt: std::time::Duration) {
+    fn draw_view(&mut self, size: [u32; 2], frame_dt: std::time::Duration) {
         if size[0] == 0 || size[1] == 0 {
             return;
         }
@@ -345,7 +345,7 @@ impl ViewerApp {
             return;
         }
         let threads = self.editor.scene().render.threads;
-        match self.view.render(ctx, self.editor.world_mut(), key, threads) {
+        match self.view.render(self.editor.world_mut(), key, threads) {
             Ok(t) => {
                 self.stats.record(frame_dt, t.simulate, t.render, t.upload);
                 self.rendered += 1;
@@ -360,6 +360,12 @@ impl ViewerApp {
 }
 
 impl eframe::App for ViewerApp {
+    fn on_exit(&mut self, gl: Option<&eframe::glow::Context>) {
+        if let Some(gl) = gl {
+            self.view.destroy(gl);
+        }
+    }
+
     fn update(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
         let now = Instant::now();
         let frame_dt = self.last_frame.map(|t| now - t).unwrap_or_default();
@@ -384,15 +390,18 @@ impl eframe::App for ViewerApp {
                 self.handle_panel(ctx, out);
             });
         });
-        egui::CentralPanel::default().frame(egui::Frame::none().fill(Color32::BLACK)).show(ctx, |ui| {
+        // No fill behind the view: it would be one more full-view pass of egui's shader on
+        // llvmpipe; black is painted only until the first frame exists.
+        egui::CentralPanel::default().frame(egui::Frame::none()).show(ctx, |ui| {
             let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
             self.handle_mouse(ui, &response);
             let ppp = ctx.pixels_per_point();
             let size = [(rect.width() * ppp).round() as u32, (rect.height() * ppp).round() as u32];
-            self.draw_view(ctx, size, frame_dt);
-            if let Some(tex) = self.view.texture() {
-                let uv = Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                ui.painter().image(tex.id(), rect, uv, Color32::WHITE);
+            self.draw_view(size, frame_dt);
+            if self.view.has_frame() {
+                self.view.paint(ui.painter(), rect);
+            } else {
+                ui.painter().rect_filled(rect, 0.0, Color32::BLACK);
             }
         });
 

@@ -16,7 +16,8 @@
 //! | [`editor`] | draft scene (what the panel shows), last valid scene and its `World` |
 //! | [`panels`] | one module per scene section or water model |
 //! | [`camera_control`] | orbit, zoom and pan as pure functions on `Camera` |
-//! | [`live_view`] | render, encode, upload; the thread pool |
+//! | [`live_view`] | render and encode; the thread pool |
+//! | [`gl_view`] | upload and show the frame (one GL blit, no egui shader) |
 //! | [`picking`] | a click in the view to a point on the water (spring mesh disturbances) |
 //! | [`clock`], [`frame_stats`], [`files`] | time, timings, scene and PNG files |
 //!
@@ -62,6 +63,7 @@ pub mod clock;
 pub mod editor;
 pub mod files;
 pub mod frame_stats;
+pub mod gl_view;
 pub mod live_view;
 pub mod panels;
 pub mod picking;
@@ -116,6 +118,13 @@ pub fn run(options: ViewerOptions) -> Result<()> {
             .with_title(format!("swell: {}", options.source))
             .with_inner_size([vw + app::PANEL_WIDTH, vh + app::STATUS_HEIGHT])
             .with_position([0.0, 0.0]),
+        // The view is blitted, not shaded (gl_view.rs); egui's dithering only touches the panel.
+        // No vsync: frames are paced by the render, and Xvfb has no display refresh to wait for.
+        vsync: false,
+        dithering: false,
+        multisampling: 0,
+        depth_buffer: 0,
+        stencil_buffer: 0,
         ..Default::default()
     };
     eframe::run_native("swell", native, Box::new(move |_cc| Ok(Box::new(app)))).map_err(|e| {

@@ -1,16 +1,17 @@
-//! The central view: swell's CPU render of the world at the view's pixel size, uploaded as an egui
-//! texture.
+//! The central view: swell's CPU render of the world at the view's pixel size, handed to
+//! [`crate::gl_view`] which uploads and blits it at the next paint.
 //!
-//! Rendering runs on the UI thread inside the scene's rayon pool (`render.threads`): a 1280x720
-//! sea takes 10-30 ms on two cores, so a worker thread would add latency and copies for little.
+//! Rendering runs on the UI thread inside the scene's rayon pool (`render.threads`).
 
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use eframe::egui::{self, ColorImage, TextureHandle, TextureOptions};
+use eframe::egui::{self, Rect};
 use swell::render::Renderer;
 use swell::scene::{World, MAX_IMAGE_SIDE};
 use swell::{Error, Result};
+
+use crate::gl_view::GlView;
 
 /// How long each stage of one frame took.
 #[derive(Clone, Copy, Debug, Default)]
@@ -19,7 +20,7 @@ pub struct StageTimes {
     pub simulate: Duration,
     /// Rasterizing and encoding to RGBA8.
     pub render: Duration,
-    /// Copying into the window's texture.
+    /// Copying into the window's texture (the upload of the previous frame: it happens at paint).
     pub upload: Duration,
 }
 
@@ -34,12 +35,13 @@ pub struct FrameKey {
     pub size: [u32; 2],
 }
 
-/// Renderer, pixel buffer, texture and thread pool of the central view.
+/// Renderer, pixel buffers, on-screen texture and thread pool of the central view.
 pub struct LiveView {
     renderer: Renderer,
+    /// The buffer the next frame is encoded into; swapped with the shown one after each frame.
     rgba: Vec<u8>,
     size: [u32; 2],
-    texture: Option<TextureHandle>,
+    screen: GlView,
     pool: Option<(u32, rayon::ThreadPool)>,
     last: Option<FrameKey>,
 }
@@ -53,7 +55,14 @@ impl Default for LiveView {
 impl LiveView {
     /// An empty view; buffers are allocated by the first frame.
     pub fn new() -> Self {
-        Self { renderer: Renderer::new(), rgba: Vec::new(), size: [0, 0], texture: None, pool: None, last: None }
+        Self {
+            renderer: Renderer::new(),
+            rgba: Vec::new(),
+            size: [0, 0],
+            screen: GlView::default(),
+            pool: None,
+            last: None,
+        }
     }
 
     /// Whether a frame for `key` would differ from the one shown.
@@ -62,14 +71,9 @@ impl LiveView {
     }
 
     /// Moves `world` to `key.time`, renders it at `key.size` (each side clamped to
-    /// [1, `MAX_IMAGE_SIDE`]) with `threads` workers (0 = one per core), and uploads the image.
-    pub fn render(
-        &mut self,
-        ctx: &egui::Context,
-        world: &mut World,
-        key: FrameKey,
-        threads: u32,
-    ) -> Result<StageTimes> {
+    /// [1, `MAX_IMAGE_SIDE`]) with `threads` workers (0 = one per core), and queues the image for
+    /// upload at the next paint.
+    pub fn render(&mut self, world: &mut World, key: FrameKey, threads: u32) -> Result<StageTimes> {
         let [w, h] = key.size.map(|s| s.clamp(1, MAX_IMAGE_SIDE));
         self.ensure_pool(threads)?;
         let pool = &self.pool.as_ref().expect("ensure_pool built it").1;
@@ -85,22 +89,29 @@ impl LiveView {
             times.render = t1.elapsed();
             Ok(())
         })?;
-        let t2 = Instant::now();
-        // Alpha is 255 everywhere, so premultiplied and straight alpha are the same bytes.
-        let image = ColorImage::from_rgba_premultiplied([w as usize, h as usize], &self.rgba);
-        match &mut self.texture {
-            Some(t) => t.set(image, TextureOptions::NEAREST),
-            None => self.texture = Some(ctx.load_texture("swell-view", image, TextureOptions::NEAREST)),
-        }
-        times.upload = t2.elapsed();
+        let mut slot = self.screen.lock();
+        std::mem::swap(&mut slot.pixels, &mut self.rgba);
+        slot.mark_new([w, h]);
+        times.upload = slot.last_upload;
+        drop(slot);
         self.size = [w, h];
         self.last = Some(key);
         Ok(times)
     }
 
-    /// The texture of the last frame, if any.
-    pub fn texture(&self) -> Option<&TextureHandle> {
-        self.texture.as_ref()
+    /// Whether a frame has been rendered (and can be painted).
+    pub fn has_frame(&self) -> bool {
+        self.last.is_some()
+    }
+
+    /// Paints the newest frame into `rect` (points) of `painter`'s layer.
+    pub fn paint(&self, painter: &egui::Painter, rect: Rect) {
+        self.screen.paint(painter, rect);
+    }
+
+    /// Frees the on-screen texture (at exit).
+    pub fn destroy(&self, gl: &eframe::glow::Context) {
+        self.screen.destroy(gl);
     }
 
     /// Pixel size of the last frame.
@@ -110,10 +121,11 @@ impl LiveView {
 
     /// Writes the last rendered frame (the view alone, at its pixel size) as PNG.
     pub fn save_png(&self, path: &Path) -> Result<()> {
-        if self.rgba.is_empty() {
+        let slot = self.screen.lock();
+        if slot.pixels.is_empty() {
             return Err(Error::invalid("screenshot", "nothing has been rendered yet"));
         }
-        crate::files::write_screenshot(path, self.size[0] as usize, self.size[1] as usize, &self.rgba)
+        crate::files::write_screenshot(path, slot.size[0] as usize, slot.size[1] as usize, &slot.pixels)
     }
 
     /// Builds the pool for `threads` workers, only when the count changes.
