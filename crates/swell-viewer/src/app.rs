@@ -182,7 +182,13 @@ impl ViewerApp {
         let click = self.panels.click_drop;
         let result = click.validate().and_then(|()| self.editor.disturb_water(at.x, at.y, click.depth, click.radius));
         match result {
-            Ok(true) => self.run_error = None,
+            Ok(true) => {
+                // The render thread's world, which is the one shown, gets the same dent.
+                let d =
+                    crate::render_thread::Disturbance { x: at.x, z: at.y, depth: click.depth, radius: click.radius };
+                self.view.disturb(d);
+                self.run_error = None;
+            }
             Ok(false) => {}
             Err(e) => self.run_error = Some(e.to_string()),
         }
@@ -335,8 +341,21 @@ impl ViewerApp {
         s
     }
 
-    /// Renders a new frame if anything it depends on changed (always, in the scripted mode).
-    fn draw_view(&mut self, size: [u32; 2], frame_dt: std::time::Duration) {
+    /// Shows the frame rendered since the last UI frame and asks for the next one if anything it
+    /// depends on changed (always, in the scripted mode).
+    fn draw_view(&mut self, ctx: &egui::Context, size: [u32; 2], frame_dt: std::time::Duration) {
+        match self.view.collect() {
+            Some(Ok(t)) => {
+                self.stats.record(frame_dt, t.simulate, t.render, t.upload);
+                self.rendered += 1;
+            }
+            Some(Err(e)) => {
+                // A stateful model went unstable: stop the clock so the error stays readable.
+                self.clock.playing = false;
+                self.run_error = Some(e.to_string());
+            }
+            None => {}
+        }
         if size[0] == 0 || size[1] == 0 {
             return;
         }
@@ -345,16 +364,8 @@ impl ViewerApp {
             return;
         }
         let threads = self.editor.scene().render.threads;
-        match self.view.render(self.editor.world_mut(), key, threads) {
-            Ok(t) => {
-                self.stats.record(frame_dt, t.simulate, t.render, t.upload);
-                self.rendered += 1;
-            }
-            Err(e) => {
-                // A stateful model went unstable: stop the clock so the error stays readable.
-                self.clock.playing = false;
-                self.run_error = Some(e.to_string());
-            }
+        if let Err(e) = self.view.request(ctx, self.editor.scene(), key, threads) {
+            self.run_error = Some(e.to_string());
         }
     }
 }
@@ -397,7 +408,7 @@ impl eframe::App for ViewerApp {
             self.handle_mouse(ui, &response);
             let ppp = ctx.pixels_per_point();
             let size = [(rect.width() * ppp).round() as u32, (rect.height() * ppp).round() as u32];
-            self.draw_view(size, frame_dt);
+            self.draw_view(ctx, size, frame_dt);
             if self.view.has_frame() {
                 self.view.paint(ui.painter(), rect);
             } else {

@@ -3,8 +3,9 @@
 //! `swell view --preset sea` opens it. This is the only swell crate with window dependencies
 //! (eframe/egui with the glow backend under X11); everything it shows is computed by the `swell`
 //! library: [`swell::scene::World::update`] moves the water and
-//! [`swell::render::Renderer::render_size`] draws it on the CPU at the view's pixel size; the
-//! window only displays the image as a texture.
+//! [`swell::render::Renderer::render_size`] draws it on the CPU at the view's pixel size, on the
+//! render thread, one frame ahead of the paint; the window only displays the image (a texture
+//! blitted to the window).
 //!
 //! User documentation (keys, mouse, panel, files): `docs/viewer.md`.
 //!
@@ -16,7 +17,8 @@
 //! | [`editor`] | draft scene (what the panel shows), last valid scene and its `World` |
 //! | [`panels`] | one module per scene section or water model |
 //! | [`camera_control`] | orbit, zoom and pan as pure functions on `Camera` |
-//! | [`live_view`] | render and encode; the thread pool |
+//! | [`live_view`] | one frame in flight: collect the last, request the next |
+//! | [`render_thread`] | simulates and renders the next frame while the UI paints this one |
 //! | [`gl_view`] | upload and show the frame (one GL blit, no egui shader) |
 //! | [`picking`] | a click in the view to a point on the water (spring mesh disturbances) |
 //! | [`clock`], [`frame_stats`], [`files`] | time, timings, scene and PNG files |
@@ -67,6 +69,7 @@ pub mod gl_view;
 pub mod live_view;
 pub mod panels;
 pub mod picking;
+pub mod render_thread;
 
 use std::cell::RefCell;
 use std::path::PathBuf;
