@@ -177,3 +177,76 @@ fn follow(world: &mut Option<World>, scene: Scene) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swell::scene::preset;
+
+    const SIZE: [u32; 2] = [96, 54];
+
+    fn request(scene: Option<&Scene>, revision: u64, time: f64, disturbances: Vec<Disturbance>) -> Request {
+        Request {
+            key: FrameKey { revision, time, size: SIZE },
+            scene: scene.map(|s| Box::new(s.clone())),
+            disturbances,
+            threads: 2,
+            buffer: Vec::new(),
+        }
+    }
+
+    fn frame(t: &RenderThread, r: Request) -> Frame {
+        assert!(t.send(r));
+        t.receive().expect("the thread answers").unwrap_or_else(|(e, _)| panic!("{e}"))
+    }
+
+    /// What the UI thread would have rendered itself before the render thread existed.
+    fn direct(scene: &Scene, time: f64, threads: usize) -> Vec<u8> {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let mut world = World::new(scene.clone()).unwrap();
+            world.update(time).unwrap();
+            let mut rgba = Vec::new();
+            let r = scene.render;
+            Renderer::new().render_size(&world, SIZE[0], SIZE[1]).encode_rgba8(r.exposure, r.gamma, &mut rgba);
+            rgba
+        })
+    }
+
+    #[test]
+    fn frames_are_the_scenes_render_and_follow_scene_changes() {
+        let t = RenderThread::start(|| {}).unwrap();
+        let mut scene = preset("sea").unwrap();
+        let f = frame(&t, request(Some(&scene), 0, 1.5, vec![]));
+        assert_eq!(f.size, SIZE);
+        assert_eq!(f.pixels, direct(&scene, 1.5, 1), "render thread and a direct 1-thread render differ");
+
+        // A camera change (same water) swaps the scene in place; a water change rebuilds.
+        scene.camera.eye.x += 5.0;
+        let f = frame(&t, request(Some(&scene), 1, 2.0, vec![]));
+        assert_eq!(f.pixels, direct(&scene, 2.0, 2));
+        scene.water.as_mut().unwrap().surface.cells = [64, 64];
+        let f = frame(&t, request(Some(&scene), 2, 2.0, vec![]));
+        assert_eq!(f.pixels, direct(&scene, 2.0, 2));
+        // No scene sent: the thread keeps the one it has.
+        let f = frame(&t, request(None, 2, 2.5, vec![]));
+        assert_eq!(f.pixels, direct(&scene, 2.5, 2));
+    }
+
+    #[test]
+    fn forwarded_clicks_dent_the_spring_mesh_and_errors_return_the_buffer() {
+        let t = RenderThread::start(|| {}).unwrap();
+        let scene = preset("springs").unwrap();
+        let calm = frame(&t, request(Some(&scene), 0, 0.5, vec![])).pixels;
+        let d = Disturbance { x: 0.0, z: 0.0, depth: 0.5, radius: 2.0 };
+        let dented = frame(&t, request(None, 1, 0.5, vec![d])).pixels;
+        assert_ne!(calm, dented, "the dent changed nothing on screen");
+
+        let bad = Disturbance { radius: -1.0, ..d };
+        assert!(t.send(Request { buffer: vec![7; 12], ..request(None, 2, 0.5, vec![bad]) }));
+        match t.receive().expect("the thread answers") {
+            Err((_, buffer)) => assert_eq!(buffer, vec![7; 12]),
+            Ok(_) => panic!("a negative radius was accepted"),
+        }
+    }
+}
