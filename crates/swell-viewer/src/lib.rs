@@ -31,7 +31,9 @@
 //!    anything else is swapped in place. If not, the previous scene keeps running, the draft keeps
 //!    the refused value, and the error (key, value, valid range) is shown at the top of the panel
 //!    with a "Revert" button.
-//! 3. The next frame renders the committed scene.
+//! 3. The next UI frame sees the new [`editor::SceneEditor::revision`] and sends the committed
+//!    scene to the [`render_thread`], whose own world follows it (rebuilt only when `[water]` or
+//!    `[terrain]` changed); the frame made from it is shown one UI frame later.
 //!
 //! The mouse moves the camera through [`editor::SceneEditor::set_camera`], which updates both the
 //! draft and the scene, so the camera keeps working while a draft is refused.
