@@ -182,7 +182,13 @@ impl ViewerApp {
         let click = self.panels.click_drop;
         let result = click.validate().and_then(|()| self.editor.disturb_water(at.x, at.y, click.depth, click.radius));
         match result {
-            Ok(true) => self.run_error = None,
+            Ok(true) => {
+                // The render thread's world, which is the one shown, gets the same dent.
+                let d =
+                    crate::render_thread::Disturbance { x: at.x, z: at.y, depth: click.depth, radius: click.radius };
+                self.view.disturb(d);
+                self.run_error = None;
+            }
             Ok(false) => {}
             Err(e) => self.run_error = Some(e.to_string()),
         }
@@ -335,8 +341,21 @@ impl ViewerApp {
         s
     }
 
-    /// Renders a new frame if anything it depends on changed (always, in the scripted mode).
+    /// Shows the frame rendered since the last UI frame and asks for the next one if anything it
+    /// depends on changed (always, in the scripted mode).
     fn draw_view(&mut self, ctx: &egui::Context, size: [u32; 2], frame_dt: std::time::Duration) {
+        match self.view.collect() {
+            Some(Ok(t)) => {
+                self.stats.record(frame_dt, t.simulate, t.render, t.upload);
+                self.rendered += 1;
+            }
+            Some(Err(e)) => {
+                // A stateful model went unstable: stop the clock so the error stays readable.
+                self.clock.playing = false;
+                self.run_error = Some(e.to_string());
+            }
+            None => {}
+        }
         if size[0] == 0 || size[1] == 0 {
             return;
         }
@@ -345,21 +364,19 @@ impl ViewerApp {
             return;
         }
         let threads = self.editor.scene().render.threads;
-        match self.view.render(ctx, self.editor.world_mut(), key, threads) {
-            Ok(t) => {
-                self.stats.record(frame_dt, t.simulate, t.render, t.upload);
-                self.rendered += 1;
-            }
-            Err(e) => {
-                // A stateful model went unstable: stop the clock so the error stays readable.
-                self.clock.playing = false;
-                self.run_error = Some(e.to_string());
-            }
+        if let Err(e) = self.view.request(ctx, self.editor.scene(), key, threads) {
+            self.run_error = Some(e.to_string());
         }
     }
 }
 
 impl eframe::App for ViewerApp {
+    fn on_exit(&mut self, gl: Option<&eframe::glow::Context>) {
+        if let Some(gl) = gl {
+            self.view.destroy(gl);
+        }
+    }
+
     fn update(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
         let now = Instant::now();
         let frame_dt = self.last_frame.map(|t| now - t).unwrap_or_default();
@@ -384,15 +401,18 @@ impl eframe::App for ViewerApp {
                 self.handle_panel(ctx, out);
             });
         });
-        egui::CentralPanel::default().frame(egui::Frame::none().fill(Color32::BLACK)).show(ctx, |ui| {
+        // No fill behind the view: it would be one more full-view pass of egui's shader on
+        // llvmpipe; black is painted only until the first frame exists.
+        egui::CentralPanel::default().frame(egui::Frame::none()).show(ctx, |ui| {
             let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
             self.handle_mouse(ui, &response);
             let ppp = ctx.pixels_per_point();
             let size = [(rect.width() * ppp).round() as u32, (rect.height() * ppp).round() as u32];
             self.draw_view(ctx, size, frame_dt);
-            if let Some(tex) = self.view.texture() {
-                let uv = Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                ui.painter().image(tex.id(), rect, uv, Color32::WHITE);
+            if self.view.has_frame() {
+                self.view.paint(ui.painter(), rect);
+            } else {
+                ui.painter().rect_filled(rect, 0.0, Color32::BLACK);
             }
         });
 

@@ -3,8 +3,9 @@
 //! `swell view --preset sea` opens it. This is the only swell crate with window dependencies
 //! (eframe/egui with the glow backend under X11); everything it shows is computed by the `swell`
 //! library: [`swell::scene::World::update`] moves the water and
-//! [`swell::render::Renderer::render_size`] draws it on the CPU at the view's pixel size; the
-//! window only displays the image as a texture.
+//! [`swell::render::Renderer::render_size`] draws it on the CPU at the view's pixel size, on the
+//! render thread, one frame ahead of the paint; the window only displays the image (a texture
+//! blitted to the window).
 //!
 //! User documentation (keys, mouse, panel, files): `docs/viewer.md`.
 //!
@@ -16,7 +17,9 @@
 //! | [`editor`] | draft scene (what the panel shows), last valid scene and its `World` |
 //! | [`panels`] | one module per scene section or water model |
 //! | [`camera_control`] | orbit, zoom and pan as pure functions on `Camera` |
-//! | [`live_view`] | render, encode, upload; the thread pool |
+//! | [`live_view`] | one frame in flight: collect the last, request the next |
+//! | [`render_thread`] | simulates and renders the next frame while the UI paints this one |
+//! | [`gl_view`] | upload and show the frame (one GL blit, no egui shader) |
 //! | [`picking`] | a click in the view to a point on the water (spring mesh disturbances) |
 //! | [`clock`], [`frame_stats`], [`files`] | time, timings, scene and PNG files |
 //!
@@ -28,7 +31,9 @@
 //!    anything else is swapped in place. If not, the previous scene keeps running, the draft keeps
 //!    the refused value, and the error (key, value, valid range) is shown at the top of the panel
 //!    with a "Revert" button.
-//! 3. The next frame renders the committed scene.
+//! 3. The next UI frame sees the new [`editor::SceneEditor::revision`] and sends the committed
+//!    scene to the [`render_thread`], whose own world follows it (rebuilt only when `[water]` or
+//!    `[terrain]` changed); the frame made from it is shown one UI frame later.
 //!
 //! The mouse moves the camera through [`editor::SceneEditor::set_camera`], which updates both the
 //! draft and the scene, so the camera keeps working while a draft is refused.
@@ -65,9 +70,11 @@ pub mod clock;
 pub mod editor;
 pub mod files;
 pub mod frame_stats;
+pub mod gl_view;
 pub mod live_view;
 pub mod panels;
 pub mod picking;
+pub mod render_thread;
 
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -119,6 +126,13 @@ pub fn run(options: ViewerOptions) -> Result<()> {
             .with_title(format!("swell: {}", options.source))
             .with_inner_size([vw + app::PANEL_WIDTH, vh + app::STATUS_HEIGHT])
             .with_position([0.0, 0.0]),
+        // The view is blitted, not shaded (gl_view.rs); egui's dithering only touches the panel.
+        // No vsync: frames are paced by the render, and Xvfb has no display refresh to wait for.
+        vsync: false,
+        dithering: false,
+        multisampling: 0,
+        depth_buffer: 0,
+        stencil_buffer: 0,
         ..Default::default()
     };
     eframe::run_native("swell", native, Box::new(move |_cc| Ok(Box::new(app)))).map_err(|e| {

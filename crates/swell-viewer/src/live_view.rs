@@ -1,25 +1,29 @@
-//! The central view: swell's CPU render of the world at the view's pixel size, uploaded as an egui
-//! texture.
+//! The central view: swell's CPU render of the world at the view's pixel size, made on the
+//! [`crate::render_thread`] one frame ahead and shown by [`crate::gl_view`] (upload and blit at
+//! paint).
 //!
-//! Rendering runs on the UI thread inside the scene's rayon pool (`render.threads`): a 1280x720
-//! sea takes 10-30 ms on two cores, so a worker thread would add latency and copies for little.
+//! Each UI frame [`LiveView::collect`]s the frame asked for by the previous UI frame (waiting for
+//! it if the render is slower than the paint), hands it to the screen, and [`LiveView::request`]s
+//! the next one, which is then rendered while egui paints.
 
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use eframe::egui::{self, ColorImage, TextureHandle, TextureOptions};
-use swell::render::Renderer;
-use swell::scene::{World, MAX_IMAGE_SIDE};
+use eframe::egui::{self, Rect};
+use swell::scene::Scene;
 use swell::{Error, Result};
+
+use crate::gl_view::GlView;
+use crate::render_thread::{Disturbance, RenderThread, Request};
 
 /// How long each stage of one frame took.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct StageTimes {
-    /// `World::update`.
+    /// `World::update` (and, after a scene change, following it), on the render thread.
     pub simulate: Duration,
-    /// Rasterizing and encoding to RGBA8.
+    /// Rasterizing and encoding to RGBA8, on the render thread.
     pub render: Duration,
-    /// Copying into the window's texture.
+    /// Copying into the window's texture (the upload of the previous frame: it happens at paint).
     pub upload: Duration,
 }
 
@@ -34,14 +38,20 @@ pub struct FrameKey {
     pub size: [u32; 2],
 }
 
-/// Renderer, pixel buffer, texture and thread pool of the central view.
+/// The render thread, the frame on screen and the bookkeeping between them.
 pub struct LiveView {
-    renderer: Renderer,
-    rgba: Vec<u8>,
-    size: [u32; 2],
-    texture: Option<TextureHandle>,
-    pool: Option<(u32, rayon::ThreadPool)>,
-    last: Option<FrameKey>,
+    /// Started by the first request (it needs the egui context to wake the UI).
+    thread: Option<RenderThread>,
+    screen: GlView,
+    /// The buffer of the frame shown before the current one, lent to the next request.
+    spare: Vec<u8>,
+    /// Key of the last request (rendered or in flight).
+    requested: Option<FrameKey>,
+    /// Scene revision the render thread has.
+    sent_revision: Option<u64>,
+    in_flight: bool,
+    shown: bool,
+    disturbances: Vec<Disturbance>,
 }
 
 impl Default for LiveView {
@@ -51,80 +61,118 @@ impl Default for LiveView {
 }
 
 impl LiveView {
-    /// An empty view; buffers are allocated by the first frame.
+    /// An empty view; the render thread starts with the first request.
     pub fn new() -> Self {
-        Self { renderer: Renderer::new(), rgba: Vec::new(), size: [0, 0], texture: None, pool: None, last: None }
-    }
-
-    /// Whether a frame for `key` would differ from the one shown.
-    pub fn is_stale(&self, key: &FrameKey) -> bool {
-        self.last.as_ref() != Some(key)
-    }
-
-    /// Moves `world` to `key.time`, renders it at `key.size` (each side clamped to
-    /// [1, `MAX_IMAGE_SIDE`]) with `threads` workers (0 = one per core), and uploads the image.
-    pub fn render(
-        &mut self,
-        ctx: &egui::Context,
-        world: &mut World,
-        key: FrameKey,
-        threads: u32,
-    ) -> Result<StageTimes> {
-        let [w, h] = key.size.map(|s| s.clamp(1, MAX_IMAGE_SIDE));
-        self.ensure_pool(threads)?;
-        let pool = &self.pool.as_ref().expect("ensure_pool built it").1;
-        let (exposure, gamma) = (world.scene.render.exposure, world.scene.render.gamma);
-        let (renderer, rgba) = (&mut self.renderer, &mut self.rgba);
-        let mut times = StageTimes::default();
-        pool.install(|| -> Result<()> {
-            let t0 = Instant::now();
-            world.update(key.time)?;
-            let t1 = Instant::now();
-            renderer.render_size(world, w, h).encode_rgba8(exposure, gamma, rgba);
-            times.simulate = t1 - t0;
-            times.render = t1.elapsed();
-            Ok(())
-        })?;
-        let t2 = Instant::now();
-        // Alpha is 255 everywhere, so premultiplied and straight alpha are the same bytes.
-        let image = ColorImage::from_rgba_premultiplied([w as usize, h as usize], &self.rgba);
-        match &mut self.texture {
-            Some(t) => t.set(image, TextureOptions::NEAREST),
-            None => self.texture = Some(ctx.load_texture("swell-view", image, TextureOptions::NEAREST)),
+        Self {
+            thread: None,
+            screen: GlView::default(),
+            spare: Vec::new(),
+            requested: None,
+            sent_revision: None,
+            in_flight: false,
+            shown: false,
+            disturbances: Vec::new(),
         }
-        times.upload = t2.elapsed();
-        self.size = [w, h];
-        self.last = Some(key);
-        Ok(times)
     }
 
-    /// The texture of the last frame, if any.
-    pub fn texture(&self) -> Option<&TextureHandle> {
-        self.texture.as_ref()
+    /// Whether a frame for `key` would differ from the last one asked for.
+    pub fn is_stale(&self, key: &FrameKey) -> bool {
+        self.requested.as_ref() != Some(key)
     }
 
-    /// Pixel size of the last frame.
+    /// Whether a frame is being rendered.
+    pub fn in_flight(&self) -> bool {
+        self.in_flight
+    }
+
+    /// Takes the frame in flight, waiting for it, and queues it for the next paint. None if no
+    /// frame was in flight; the error of a frame that failed (an unstable model).
+    pub fn collect(&mut self) -> Option<Result<StageTimes>> {
+        if !self.in_flight {
+            return None;
+        }
+        self.in_flight = false;
+        let Some(outcome) = self.thread.as_ref().and_then(RenderThread::receive) else {
+            return Some(Err(Error::invalid("view", "the render thread stopped")));
+        };
+        Some(match outcome {
+            Ok(mut frame) => {
+                let mut slot = self.screen.lock();
+                // The frame goes on screen; the one it replaces (uploaded at the last paint)
+                // becomes the spare buffer of the next request.
+                std::mem::swap(&mut slot.pixels, &mut frame.pixels);
+                slot.mark_new(frame.size);
+                let mut times = frame.times;
+                times.upload = slot.last_upload;
+                self.spare = frame.pixels;
+                self.shown = true;
+                Ok(times)
+            }
+            Err((e, buffer)) => {
+                self.spare = buffer;
+                Err(e)
+            }
+        })
+    }
+
+    /// Asks for the frame `key` of `scene` (which has revision `key.revision`) with `threads`
+    /// workers (0 = one per core); `ctx` is woken when it is ready. Call [`LiveView::collect`]
+    /// first: one frame is in flight at most.
+    pub fn request(&mut self, ctx: &egui::Context, scene: &Scene, key: FrameKey, threads: u32) -> Result<()> {
+        debug_assert!(!self.in_flight, "collect before requesting");
+        if self.thread.is_none() {
+            let ctx = ctx.clone();
+            self.thread = Some(RenderThread::start(move || ctx.request_repaint())?);
+        }
+        let thread = self.thread.as_ref().expect("started above");
+        let scene = (self.sent_revision != Some(key.revision)).then(|| Box::new(scene.clone()));
+        let request = Request {
+            key,
+            scene,
+            disturbances: std::mem::take(&mut self.disturbances),
+            threads,
+            buffer: std::mem::take(&mut self.spare),
+        };
+        if !thread.send(request) {
+            return Err(Error::invalid("view", "the render thread stopped"));
+        }
+        self.sent_revision = Some(key.revision);
+        self.requested = Some(key);
+        self.in_flight = true;
+        Ok(())
+    }
+
+    /// Forwards a click's dent to the render thread's world (applied before the next frame).
+    pub fn disturb(&mut self, d: Disturbance) {
+        self.disturbances.push(d);
+    }
+
+    /// Whether a frame has been received (and can be painted).
+    pub fn has_frame(&self) -> bool {
+        self.shown
+    }
+
+    /// Paints the newest frame into `rect` (points) of `painter`'s layer.
+    pub fn paint(&self, painter: &egui::Painter, rect: Rect) {
+        self.screen.paint(painter, rect);
+    }
+
+    /// Frees the on-screen texture (at exit).
+    pub fn destroy(&self, gl: &eframe::glow::Context) {
+        self.screen.destroy(gl);
+    }
+
+    /// Pixel size of the frame on screen.
     pub fn size(&self) -> [u32; 2] {
-        self.size
+        self.screen.lock().size
     }
 
-    /// Writes the last rendered frame (the view alone, at its pixel size) as PNG.
+    /// Writes the frame on screen (the view alone, at its pixel size) as PNG.
     pub fn save_png(&self, path: &Path) -> Result<()> {
-        if self.rgba.is_empty() {
+        let slot = self.screen.lock();
+        if slot.pixels.is_empty() {
             return Err(Error::invalid("screenshot", "nothing has been rendered yet"));
         }
-        crate::files::write_screenshot(path, self.size[0] as usize, self.size[1] as usize, &self.rgba)
-    }
-
-    /// Builds the pool for `threads` workers, only when the count changes.
-    fn ensure_pool(&mut self, threads: u32) -> Result<()> {
-        if self.pool.as_ref().map(|(n, _)| *n) != Some(threads) {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads as usize)
-                .build()
-                .map_err(|e| Error::invalid("render.threads", format!("cannot start {threads} threads: {e}")))?;
-            self.pool = Some((threads, pool));
-        }
-        Ok(())
+        crate::files::write_screenshot(path, slot.size[0] as usize, slot.size[1] as usize, &slot.pixels)
     }
 }

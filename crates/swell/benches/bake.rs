@@ -23,7 +23,8 @@ fn sea_512() -> World {
 /// The `ocean` preset with a 512² FFT grid whose mesh covers exactly one patch (so `tile` holds).
 fn ocean_512() -> World {
     let text = include_str!("../presets/ocean.toml")
-        .replace("size = [400.0, 400.0]", "size = [250.0, 250.0]")
+        .replace("size = [400.0, 400.0]", "size = [256.0, 256.0]")
+        .replace("cells = [400, 400]", "cells = [512, 512]")
         .replace("grid = 256", "grid = 512");
     World::new(swell::scene::Scene::from_toml(&text, "ocean 512").unwrap()).unwrap()
 }
