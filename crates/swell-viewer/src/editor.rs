@@ -81,10 +81,7 @@ impl SceneEditor {
     /// `depth` x `radius` in the world.
     pub fn disturb_water(&mut self, x: f32, z: f32, depth: f32, radius: f32) -> Result<bool> {
         let time = self.world.time();
-        let local = self.world.water_local_xz(x, z);
-        let Some(w) = &mut self.world.water else { return Ok(false) };
-        let s = w.placement.scale;
-        if !w.model.disturb(local.x, local.y, depth / s, radius / s)? {
+        if !self.world.disturb_water(x, z, depth, radius)? {
             return Ok(false);
         }
         self.world.update(if time.is_finite() { time } else { 0.0 })?;

@@ -151,10 +151,8 @@ impl Worker {
                 follow(world_slot, *scene)?;
             }
             let world = world_slot.as_mut().ok_or_else(|| Error::invalid("view", "no scene received yet"))?;
-            if let Some(water) = &mut world.water {
-                for d in disturbances {
-                    water.model.disturb(d.x, d.z, d.depth, d.radius)?;
-                }
+            for d in disturbances {
+                world.disturb_water(d.x, d.z, d.depth, d.radius)?;
             }
             world.update(key.time)?;
             let t1 = Instant::now();

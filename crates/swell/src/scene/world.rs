@@ -115,6 +115,18 @@ impl World {
         self.water.as_ref().map_or(p, |w| w.placement.to_local_xz(p))
     }
 
+    /// Drops a dent `depth` m deep and `radius` m wide on the water at world (x, z) (a click, a
+    /// stone), for models with state (the spring mesh). A turned or scaled patch gets it at the
+    /// model-frame point under (x, z), sized so that it is `depth` x `radius` in the world. Returns
+    /// false, changing nothing, without water or for a closed-form model. The mesh shows the dent
+    /// after the next [`World::update`].
+    pub fn disturb_water(&mut self, x: f32, z: f32, depth: f32, radius: f32) -> Result<bool> {
+        let local = self.water_local_xz(x, z);
+        let Some(w) = &mut self.water else { return Ok(false) };
+        let s = w.placement.scale;
+        w.model.disturb(local.x, local.y, depth / s, radius / s)
+    }
+
     /// The time of the last [`World::update`], seconds.
     pub fn time(&self) -> f64 {
         self.time
