@@ -28,8 +28,19 @@
 //! inverse FFTs per step. Each 2-D transform is N row FFTs over the kz index (rows in parallel), a
 //! blocked transpose fused with N row FFTs over the kx index. The four pairs go through each pass
 //! together (one parallel pass of column transforms, one of row transforms), which costs a column
-//! buffer per pair (4 x N (N + 16) complex values) and saves six meetings of the threads per step.
-//! Buffers are allocated in `new`.
+//! buffer per pair (4 x N (N + 16) complex values). Buffers are allocated in `new`.
+//!
+//! ## Two passes over memory per step
+//! The step is two parallel passes (two meetings of the threads), each fusing what used to be
+//! passes of their own, because at 1024² the buffers do not fit in cache and passes over memory,
+//! not arithmetic, set the time:
+//! - **column pass**: a task owns stored rows m and their mirror rows N - m (adjacent slots of the
+//!   column buffers); it evolves `h(k, t)` of row m into an L1 scratch row, fills both rows of the
+//!   four packed spectra from it (`λ/|k|` comes from a table, so no square root or division), and
+//!   transforms them over kz. `h(k, t)` is never stored.
+//! - **row pass**: a task owns 16 output rows; it transposes them out of the column buffers, four kx
+//!   at a time, transforms them over kx and, for the first cascade, updates their foam from the
+//!   Jacobian terms it has just written.
 
 use std::f64::consts::TAU;
 use std::sync::Arc;
