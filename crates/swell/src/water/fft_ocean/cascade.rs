@@ -394,10 +394,9 @@ impl Cascade {
                 .zip(values.par_chunks_mut(chunk))
                 .enumerate()
                 .for_each(|(task, (((((o0, o1), o2), o3), scratch), foam))| {
-                    let out = [o0, o1, o2, o3];
-                    let [a, b, c, d] = out;
-                    body(task, [&mut *a, &mut *b, &mut *c, &mut *d], scratch);
-                    let (dxx, jac) = (&[&*a, &*b, &*c, &*d][PAIR_HZ_DXX][..], &[&*a, &*b, &*c, &*d][PAIR_DZZ_DXZ][..]);
+                    body(task, [&mut *o0, &mut *o1, &mut *o2, &mut *o3], scratch);
+                    let written = [&*o0, &*o1, &*o2, &*o3];
+                    let (dxx, jac) = (written[PAIR_HZ_DXX], written[PAIR_DZZ_DXZ]);
                     // Foam follows the Jacobian of the rows this task has just written.
                     for ((v, dxx), dzz_dxz) in foam.iter_mut().zip(dxx).zip(jac) {
                         *v = foam_coverage(jacobian(dxx.im, dzz_dxz.re, dzz_dxz.im), threshold).max(*v * decay);
