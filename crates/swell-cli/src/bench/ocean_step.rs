@@ -86,9 +86,9 @@ fn timed_step(ocean: &mut FftOcean, mesh: &mut SurfaceMesh, k: u32) -> Result<St
 /// Stage names of the `ocean` experiment, in series order.
 const STAGES: [&str; 5] = [
     "simulation (evolve + FFTs + foam)",
-    "evolve h(k, t)",
-    "FFTs (8 fields, 4 packed transforms)",
-    "foam (Jacobian)",
+    "evolve h(k, t), spectra, FFTs over kz (column pass)",
+    "FFTs over kx, transposes, foam (row pass)",
+    "foam alone (0: fused into the row pass)",
     "displaced mesh (positions, normals, foam)",
 ];
 
@@ -154,7 +154,9 @@ pub fn ocean_experiment(ctx: &Context) -> Result<Report> {
              and 890 ms)."
                 .into(),
             "Each stage's time is measured inside the same steps (its own clock), so the stages of one row \
-             come from the same runs; the spread is over steps."
+             come from the same runs; the spread is over steps. Since session 3 the step is two fused passes: \
+             `evolve_ms` times the column pass (evolution, spectra, transforms over kz), `fft_ms` the row pass \
+             (transposes, transforms over kx, Jacobian and foam), and `foam_ms` is 0."
                 .into(),
         ],
         x_label: "grid".into(),

@@ -29,7 +29,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 pub use self::blender::{BlenderOcean, BlenderSpectrum, BLENDER_RESOLUTION_RANGE};
-use self::cascade::{Cascade, CascadeSetup, PAIR_DZZ_DXZ, PAIR_HZ_DXX, PAIR_H_DX};
+use self::cascade::{Cascade, CascadeSetup, FoamRows, PAIR_H_DX};
 pub use self::params::{FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE, MAX_CASCADES};
 use super::foam::FoamField;
 use super::wave_model::{WaveModel, INVERSION_MAX_ITERATIONS, INVERSION_TOLERANCE};
@@ -47,13 +47,18 @@ pub const CASCADE_SCALE: f32 = 4.358_899;
 const CASCADE_HANDOVER: f64 = 0.5;
 
 /// Wall-clock time of each stage of the last [`FftOcean::advance`], milliseconds.
+///
+/// The step runs as two fused passes (see `fft_ocean/cascade.rs`), so the stages are the passes:
+/// the evolution is timed with the column transforms it feeds, and foam with the row transforms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct StageTimes {
-    /// Evolving `h(k, t)` from `h0` (phases).
+    /// Column pass: evolving `h(k, t)` from `h0` (phases), filling the eight fields' packed
+    /// spectra and their transforms over kz.
     pub evolve_ms: f64,
-    /// The inverse FFTs of the eight fields.
+    /// Row pass: transposes and transforms over kx of the eight fields, with the Jacobian and foam
+    /// of the first cascade fused in.
     pub fft_ms: f64,
-    /// Jacobian and foam.
+    /// Foam on its own: 0 since foam is fused into the row pass (kept so the JSON keeps its keys).
     pub foam_ms: f64,
 }
 
@@ -180,28 +185,23 @@ impl FftOcean {
     fn step(&mut self, t: f64) {
         let t0 = Instant::now();
         for c in &mut self.cascades {
-            c.evolve(t);
+            c.column_pass(t);
         }
         let t1 = Instant::now();
+        // Foam follows the largest cascade alone: its grid is where foam is stored, and the
+        // smaller cascades' short waves, sampled on it, would alias into speckle and make the
+        // threshold depend on the number of cascades. It is updated inside that cascade's row pass.
+        let mut foam = self.params.foam.then(|| {
+            let decay = self.foam.start_update(t);
+            FoamRows { values: &mut self.foam.values, decay, threshold: self.foam.threshold }
+        });
         for c in &mut self.cascades {
-            c.synthesize();
+            c.row_pass(foam.take());
         }
         let t2 = Instant::now();
-        if self.params.foam {
-            // Foam follows the largest cascade alone: its grid is where foam is stored, and the
-            // smaller cascades' short waves, sampled on it, would alias into speckle and make the
-            // threshold depend on the number of cascades.
-            let first = &self.cascades[0];
-            let (dxx_pair, jac_pair) = (&first.fields[PAIR_HZ_DXX], &first.fields[PAIR_DZZ_DXZ]);
-            self.foam.update(t, |i, j| {
-                let idx = j * first.n + i;
-                jacobian(dxx_pair[idx].im, jac_pair[idx].re, jac_pair[idx].im)
-            });
-        }
-        let t3 = Instant::now();
         self.time = t;
         let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
-        self.stage_times = StageTimes { evolve_ms: ms(t0, t1), fft_ms: ms(t1, t2), foam_ms: ms(t2, t3) };
+        self.stage_times = StageTimes { evolve_ms: ms(t0, t1), fft_ms: ms(t1, t2), foam_ms: 0.0 };
     }
 
     /// The eight fields summed over cascades at the rest point (x, z) (m), at the last step's time.

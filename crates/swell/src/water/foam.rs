@@ -14,6 +14,7 @@ use rayon::prelude::*;
 pub const FOAM_RAMP: f32 = 0.25;
 
 /// Foam coverage in [0, 1] for Jacobian `jacobian` and threshold `threshold`.
+#[inline]
 pub fn foam_coverage(jacobian: f32, threshold: f32) -> f32 {
     ((threshold - jacobian) / FOAM_RAMP).clamp(0.0, 1.0)
 }
@@ -44,17 +45,25 @@ impl FoamField {
 
     /// Updates the field for time `t` (s) from the Jacobian at each sample `(i, j)` (column, row).
     pub fn update(&mut self, t: f64, jacobian: impl Fn(usize, usize) -> f32 + Sync) {
-        let decay = match self.last_time {
-            Some(t0) if t > t0 && self.fade > 0.0 => (-(t - t0) / f64::from(self.fade)).exp() as f32,
-            _ => 0.0,
-        };
+        let decay = self.start_update(t);
         let (n, threshold) = (self.n, self.threshold);
         self.values.par_chunks_mut(n).enumerate().for_each(|(j, row)| {
             for (i, v) in row.iter_mut().enumerate() {
                 *v = foam_coverage(jacobian(i, j), threshold).max(*v * decay);
             }
         });
+    }
+
+    /// Starts an update for time `t` (s) done by the caller (the FFT ocean fuses it into its own
+    /// pass): records t and returns the factor in [0, 1] to apply to the previous coverage, so
+    /// each value becomes `foam_coverage(J, threshold).max(old * decay)`, as [`FoamField::update`].
+    pub fn start_update(&mut self, t: f64) -> f32 {
+        let decay = match self.last_time {
+            Some(t0) if t > t0 && self.fade > 0.0 => (-(t - t0) / f64::from(self.fade)).exp() as f32,
+            _ => 0.0,
+        };
         self.last_time = Some(t);
+        decay
     }
 
     /// Mean coverage over the field, in [0, 1].

@@ -28,8 +28,19 @@
 //! inverse FFTs per step. Each 2-D transform is N row FFTs over the kz index (rows in parallel), a
 //! blocked transpose fused with N row FFTs over the kx index. The four pairs go through each pass
 //! together (one parallel pass of column transforms, one of row transforms), which costs a column
-//! buffer per pair (4 x N (N + 16) complex values) and saves six meetings of the threads per step.
-//! Buffers are allocated in `new`.
+//! buffer per pair (4 x N (N + 16) complex values). Buffers are allocated in `new`.
+//!
+//! ## Two passes over memory per step
+//! The step is two parallel passes (two meetings of the threads), each fusing what used to be
+//! passes of their own, because at 1024² the buffers do not fit in cache and passes over memory,
+//! not arithmetic, set the time:
+//! - **column pass**: a task owns stored rows m and their mirror rows N - m (adjacent slots of the
+//!   column buffers); it evolves `h(k, t)` of row m into an L1 scratch row, fills both rows of the
+//!   four packed spectra from it (`λ/|k|` comes from a table, so no square root or division), and
+//!   transforms them over kz. `h(k, t)` is never stored.
+//! - **row pass**: a task owns 16 output rows; it transposes them out of the column buffers, four kx
+//!   at a time, transforms them over kx and, for the first cascade, updates their foam from the
+//!   Jacobian terms it has just written.
 
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -38,11 +49,17 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
 use rustfft::{Fft, FftPlanner};
 
+use super::jacobian;
 use crate::math::{reduce_turns, sin_cos_turns};
 use crate::spectrum::DirectionalSpectrum;
+use crate::water::foam_coverage;
 
-/// Rows handled by one parallel task; each task owns one FFT scratch buffer.
+/// Rows handled by one parallel task of the row pass; each task owns one [`TaskScratch`].
 const ROWS_PER_TASK: usize = 16;
+
+/// Stored rows (each with its mirror row, so as many rows as [`ROWS_PER_TASK`]) handled by one
+/// task of the column pass.
+const PAIRS_PER_TASK: usize = ROWS_PER_TASK / 2;
 
 /// Padding (complex values) after each row of the column-pass buffer. Its row length is otherwise
 /// a power of two, so the transpose's reads down a column would all fall in the same cache set;
@@ -72,17 +89,45 @@ pub(super) struct Cascade {
     h0_mirror: Vec<Complex32>,
     /// `w(k) / 2π` (Hz), quantised when the sea loops; same layout.
     cycles: Vec<f64>,
-    /// `h(k, t)` of the last step; same layout.
-    ht: Vec<Complex32>,
-    /// Column pass output of each field pair, `[kx index][z]`, rows `n + WORK_ROW_PADDING` long.
+    /// `λ / |k|` (m, λ the choppiness) at each stored entry, 0 at k = 0: the time-independent part
+    /// of the spectral multipliers, so filling the spectra needs no square root or division.
+    lambda_over_k: Vec<f32>,
+    /// Time (s) of the last [`Cascade::column_pass`].
+    time: f64,
+    /// Column pass output of each field pair, one slot (row `n + WORK_ROW_PADDING` long) per kx
+    /// index, slots in the order kx index 0, N/2, 1, N-1, 2, N-2, ... so that a task of the column
+    /// pass owns a contiguous chunk holding rows m and N - m together.
     work: [Vec<Complex32>; 4],
+    /// Offset in `work` of the slot of each kx index.
+    slot_offsets: Vec<usize>,
     /// The four packed field pairs, `[z][x]`: sample (i, j) sits at local (i L/N, j L/N).
     pub fields: [Vec<Complex32>; 4],
     /// kz (rad/m) of each column index.
     wavenumbers: Vec<f32>,
-    choppiness: f32,
     fft: Arc<dyn Fft<f32>>,
-    scratch: Vec<Vec<Complex32>>,
+    scratch: Vec<TaskScratch>,
+}
+
+/// Buffers of one parallel task, allocated in `new`.
+struct TaskScratch {
+    /// rustfft's scratch.
+    fft: Vec<Complex32>,
+    /// `h(k, t)` of the stored row being transformed (n values).
+    h: Vec<Complex32>,
+    /// The row's phases in turns, reduced to [-1/2, 1/2], and their sines and cosines (n each).
+    turns: Vec<f32>,
+    sin: Vec<f32>,
+    cos: Vec<f32>,
+}
+
+/// The foam field's rows, handed to [`Cascade::row_pass`] so the foam update runs fused with it.
+pub(super) struct FoamRows<'a> {
+    /// Coverage in [0, 1], `[z][x]`, updated in place.
+    pub values: &'a mut [f32],
+    /// Factor applied to the previous coverage (persistence), in [0, 1].
+    pub decay: f32,
+    /// Jacobian threshold below which foam appears.
+    pub threshold: f32,
 }
 
 /// Wave-vector integer of FFT index i on a grid of n: i below n/2, i - n above.
@@ -192,8 +237,42 @@ impl Cascade {
             variance += v;
         }
         let fft = FftPlanner::new().plan_fft_inverse(n);
-        let rows = ROWS_PER_TASK.min(n);
-        let scratch = (0..n / rows).map(|_| vec![Complex32::default(); fft.get_inplace_scratch_len()]).collect();
+        // Both passes have n / ROWS_PER_TASK tasks (one for n = 16).
+        let tasks = n / ROWS_PER_TASK.min(n);
+        let scratch = (0..tasks)
+            .map(|_| TaskScratch {
+                fft: vec![Complex32::default(); fft.get_inplace_scratch_len()],
+                h: vec![Complex32::default(); n],
+                turns: vec![0.0; n],
+                sin: vec![0.0; n],
+                cos: vec![0.0; n],
+            })
+            .collect();
+        let wavenumbers: Vec<f32> = (0..n).map(|i| signed_index(i, n) as f32 * dk as f32).collect();
+        let lambda = s.choppiness;
+        let lambda_over_k = (0..half * n)
+            .map(|idx| {
+                let (kx, kz) = (wavenumbers[idx / n], wavenumbers[idx % n]);
+                let k2 = kx * kx + kz * kz;
+                if k2 > 0.0 {
+                    lambda / k2.sqrt()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let stride = n + WORK_ROW_PADDING;
+        let slot_offsets = (0..n)
+            .map(|a| {
+                let slot = match a {
+                    0 => 0,
+                    _ if a == half => 1,
+                    _ if a < half => 2 * a,
+                    _ => 2 * (n - a) + 1,
+                };
+                slot * stride
+            })
+            .collect();
         let zero = || vec![Complex32::default(); n * n];
         Self {
             n,
@@ -202,11 +281,12 @@ impl Cascade {
             h0,
             h0_mirror,
             cycles,
-            ht: vec![Complex32::default(); half * n],
+            lambda_over_k,
+            time: f64::NAN,
             work: std::array::from_fn(|_| vec![Complex32::default(); n * (n + WORK_ROW_PADDING)]),
             fields: [zero(), zero(), zero(), zero()],
-            wavenumbers: (0..n).map(|i| signed_index(i, n) as f32 * dk as f32).collect(),
-            choppiness: s.choppiness,
+            slot_offsets,
+            wavenumbers,
             fft,
             scratch,
         }
@@ -221,43 +301,27 @@ impl Cascade {
         self.variance *= factor * factor;
     }
 
-    /// Step 1: `h(k, t)` for the stored half spectrum.
-    pub fn evolve(&mut self, t: f64) {
-        let chunk = ROWS_PER_TASK * self.n;
-        self.ht
-            .par_chunks_mut(chunk)
-            .zip(self.h0.par_chunks(chunk))
-            .zip(self.h0_mirror.par_chunks(chunk))
-            .zip(self.cycles.par_chunks(chunk))
-            .for_each(|(((ht, h0), hm), f)| {
-                for (((out, a), b), &f) in ht.iter_mut().zip(h0).zip(hm).zip(f) {
-                    let (s, c) = sin_cos_turns(reduce_turns(f * t));
-                    // a e^{-iφ} + b e^{iφ}
-                    // Grouped so that h(-k) = conj(h(k)) holds bit for bit in the self-mirrored row nx = 0.
-                    *out = Complex32::new(
-                        (a.re * c + a.im * s) + (b.re * c - b.im * s),
-                        (a.im * c - a.re * s) + (b.im * c + b.re * s),
-                    );
-                }
-            });
-    }
-
-    /// Step 2: the four packed inverse transforms, into [`Cascade::fields`]: one parallel pass of
-    /// column transforms for all four pairs, then one of row transforms (two meetings of the
-    /// threads per step instead of eight, and each row of `h(k, t)` is read once for all pairs).
-    pub fn synthesize(&mut self) {
-        self.column_passes();
-        self.row_passes();
-    }
-
-    /// Fills `[kx][kz]` rows with the spectrum of each field pair and transforms each over kz.
-    fn column_passes(&mut self) {
+    /// Pass 1, for time `t` (s): evolves `h(k, t)` and fills and transforms the packed spectra of
+    /// the four field pairs over kz, into [`Cascade::work`]. One task owns the rows kx and -kx of
+    /// the same stored row, so each `h(k, t)` is computed once, used for both, and never stored:
+    /// the evolution costs no pass over memory of its own.
+    pub fn column_pass(&mut self, t: f64) {
         let n = self.n;
         let stride = n + WORK_ROW_PADDING;
-        let rows = ROWS_PER_TASK.min(n);
-        let (ht, kk, lambda, fft) = (&self.ht, &self.wavenumbers, self.choppiness, &self.fft);
+        let pairs = PAIRS_PER_TASK.min(n / 2);
+        let spec = Spectrum {
+            n,
+            t,
+            h0: &self.h0,
+            hm: &self.h0_mirror,
+            cycles: &self.cycles,
+            lambda_over_k: &self.lambda_over_k,
+            kk: &self.wavenumbers,
+        };
+        let fft = &self.fft;
         let [w0, w1, w2, w3] = &mut self.work;
-        let chunk = rows * stride;
+        // Each task's chunk is `pairs` pairs of slots: rows (m, n - m) of every pair's buffer.
+        let chunk = 2 * pairs * stride;
         w0.par_chunks_mut(chunk)
             .zip(w1.par_chunks_mut(chunk))
             .zip(w2.par_chunks_mut(chunk))
@@ -265,54 +329,80 @@ impl Cascade {
             .zip(self.scratch.par_iter_mut())
             .enumerate()
             .for_each(|(task, ((((b0, b1), b2), b3), scratch))| {
-                for r in 0..rows {
-                    let a = task * rows + r;
-                    let row = r * stride..r * stride + n;
-                    let spec = RowSpec { a, n, ht, kk, lambda };
-                    fill_rows(
-                        [&mut b0[row.clone()], &mut b1[row.clone()], &mut b2[row.clone()], &mut b3[row.clone()]],
-                        &spec,
-                    );
-                    for b in [&mut *b0, &mut *b1, &mut *b2, &mut *b3] {
-                        fft.process_with_scratch(&mut b[row.clone()], scratch);
+                for p in 0..pairs {
+                    let m = task * pairs + p;
+                    spec.evolve_row(m, scratch);
+                    let TaskScratch { fft: fft_scratch, h, .. } = &mut *scratch;
+                    for side in 0..2 {
+                        if m == 0 && side == 1 {
+                            // Slot 1 is the Nyquist row kx = N/2: empty, zero since `new`, never written.
+                            continue;
+                        }
+                        let at = (2 * p + side) * stride;
+                        let r = at..at + n;
+                        let out = [&mut b0[r.clone()], &mut b1[r.clone()], &mut b2[r.clone()], &mut b3[r.clone()]];
+                        if side == 0 {
+                            spec.fill_row(m, h, out);
+                        } else {
+                            spec.fill_mirror_row(m, h, out);
+                        }
+                        for b in [&mut *b0, &mut *b1, &mut *b2, &mut *b3] {
+                            fft.process_with_scratch(&mut b[r.clone()], fft_scratch);
+                        }
                     }
                 }
             });
+        self.time = t;
     }
 
-    /// Transposes `[kx][z]` to `[z][kx]` block by block and transforms each row over kx, for the
-    /// four pairs in one parallel pass.
-    fn row_passes(&mut self) {
+    /// Pass 2: transposes `[kx][z]` to `[z][kx]` block by block and transforms each row over kx,
+    /// for the four pairs, into [`Cascade::fields`]; with `foam`, updates the foam of the rows
+    /// just transformed while they are still in cache (the Jacobian needs only its own sample).
+    pub fn row_pass(&mut self, foam: Option<FoamRows>) {
         let n = self.n;
-        let stride = n + WORK_ROW_PADDING;
         let rows = ROWS_PER_TASK.min(n);
-        let (work, fft) = (&self.work, &self.fft);
+        let (work, fft, slots) = (&self.work, &self.fft, &self.slot_offsets[..]);
         let [f0, f1, f2, f3] = &mut self.fields;
         let chunk = rows * n;
-        f0.par_chunks_mut(chunk)
+        let tasks = f0
+            .par_chunks_mut(chunk)
             .zip(f1.par_chunks_mut(chunk))
             .zip(f2.par_chunks_mut(chunk))
             .zip(f3.par_chunks_mut(chunk))
-            .zip(self.scratch.par_iter_mut())
-            .enumerate()
-            .for_each(|(task, ((((o0, o1), o2), o3), scratch))| {
-                let z0 = task * rows;
-                for (block, src) in [(o0, &work[0]), (o1, &work[1]), (o2, &work[2]), (o3, &work[3])] {
-                    // Tiles of TILE kx by `rows` z: the tile's source lines (TILE rows of `work`,
-                    // rows * 8 bytes each) stay in L1 while the writes run along the output rows.
-                    const TILE: usize = 64;
-                    for a0 in (0..n).step_by(TILE) {
-                        let a1 = (a0 + TILE).min(n);
-                        let src_rows = &src[a0 * stride..a1 * stride];
-                        for (r, row) in block.chunks_exact_mut(n).enumerate() {
-                            for (out, s) in row[a0..a1].iter_mut().zip(src_rows.chunks_exact(stride)) {
-                                *out = s[z0 + r];
-                            }
-                        }
+            .zip(self.scratch.par_iter_mut());
+        let body = |task: usize, out: [&mut [Complex32]; 4], scratch: &mut TaskScratch| {
+            let z0 = task * rows;
+            for (block, src) in out.into_iter().zip(work) {
+                // Four kx at a time: each slot's `rows` values are contiguous (one or two cache
+                // lines), and each output row gets one 32-byte store per four kx; the task's
+                // `rows` output lines stay in L1. (N >= 16, so N is a multiple of 4.)
+                for a in (0..n).step_by(4) {
+                    let column = |i: usize| &src[slots[a + i] + z0..slots[a + i] + z0 + rows];
+                    let (c0, c1, c2, c3) = (column(0), column(1), column(2), column(3));
+                    for ((((row, &v0), &v1), &v2), &v3) in block.chunks_exact_mut(n).zip(c0).zip(c1).zip(c2).zip(c3) {
+                        row[a..a + 4].copy_from_slice(&[v0, v1, v2, v3]);
                     }
-                    fft.process_with_scratch(block, scratch);
                 }
-            });
+                fft.process_with_scratch(block, &mut scratch.fft);
+            }
+        };
+        match foam {
+            None => tasks.enumerate().for_each(|(task, ((((o0, o1), o2), o3), scratch))| {
+                body(task, [o0, o1, o2, o3], scratch);
+            }),
+            Some(FoamRows { values, decay, threshold }) => tasks
+                .zip(values.par_chunks_mut(chunk))
+                .enumerate()
+                .for_each(|(task, (((((o0, o1), o2), o3), scratch), foam))| {
+                    body(task, [&mut *o0, &mut *o1, &mut *o2, &mut *o3], scratch);
+                    let written = [&*o0, &*o1, &*o2, &*o3];
+                    let (dxx, jac) = (written[PAIR_HZ_DXX], written[PAIR_DZZ_DXZ]);
+                    // Foam follows the Jacobian of the rows this task has just written.
+                    for ((v, dxx), dzz_dxz) in foam.iter_mut().zip(dxx).zip(jac) {
+                        *v = foam_coverage(jacobian(dxx.im, dzz_dxz.re, dzz_dxz.im), threshold).max(*v * decay);
+                    }
+                }),
+        }
     }
 
     /// Wave-vector integers and the evolution data of stored entry `idx` (tests and point queries).
@@ -324,88 +414,119 @@ impl Cascade {
         })
     }
 
-    /// `h(k, t)` of the last [`Cascade::evolve`] at wave-vector integers (nx, nz), any sign.
+    /// `h(k, t)` of the last [`Cascade::column_pass`] at wave-vector integers (nx, nz), any sign,
+    /// computed as the pass computes it.
     #[cfg(test)]
     pub(super) fn evolved(&self, nx: i32, nz: i32) -> Complex32 {
         let n = self.n as i32;
         let (a, b) = (nx.rem_euclid(n) as usize, nz.rem_euclid(n) as usize);
         let half = self.n / 2;
+        let at = |idx: usize| evolve_one(self.h0[idx], self.h0_mirror[idx], self.cycles[idx], self.time);
         if a < half {
-            self.ht[a * self.n + b]
+            at(a * self.n + b)
         } else if a == half {
             Complex32::default()
         } else {
-            self.ht[(self.n - a) * self.n + (self.n - b) % self.n].conj()
+            at((self.n - a) * self.n + (self.n - b) % self.n).conj()
         }
     }
 }
 
-/// What [`fill_row`] reads: row `a` (kx index) of an n x n spectrum built from the stored half
-/// spectrum `ht`, with the wavenumbers `kk` and the choppiness.
-struct RowSpec<'a> {
-    a: usize,
+/// `h(k, t) = a e^{-iφ} + b e^{iφ}`, `φ = 2π f t`, for `a = h0(k)`, `b = conj(h0(-k))`, the
+/// frequency f (Hz) and time t (s). The phase is reduced in f64 turns, so the sea stays exact for
+/// any t up to about 2^51 / f.
+#[cfg(test)]
+fn evolve_one(a: Complex32, b: Complex32, f: f64, t: f64) -> Complex32 {
+    let (s, c) = sin_cos_turns(reduce_turns(f * t));
+    combine(a, b, s, c)
+}
+
+/// `a e^{-iφ} + b e^{iφ}` from `(sin φ, cos φ)`.
+#[inline(always)]
+fn combine(a: Complex32, b: Complex32, s: f32, c: f32) -> Complex32 {
+    // Grouped so that h(-k) = conj(h(k)) holds bit for bit in the self-mirrored row nx = 0.
+    Complex32::new((a.re * c + a.im * s) + (b.re * c - b.im * s), (a.im * c - a.re * s) + (b.im * c + b.re * s))
+}
+
+/// What the column pass reads: the stored half spectrum and its time-independent tables.
+struct Spectrum<'a> {
     n: usize,
-    ht: &'a [Complex32],
+    /// Time of the step (s).
+    t: f64,
+    h0: &'a [Complex32],
+    hm: &'a [Complex32],
+    cycles: &'a [f64],
+    lambda_over_k: &'a [f32],
+    /// kx or kz (rad/m) of each FFT index.
     kk: &'a [f32],
-    lambda: f32,
 }
 
-/// Writes row `a` of the four field pairs' packed spectra into `out` (n values each): each pair's
-/// multiplier times `h(k, t)`, with rows of negative kx taken from their mirrors. One sweep for
-/// the four pairs, so `h` is read and `1/k` computed once per wave vector.
-#[inline(always)]
-fn fill_rows(out: [&mut [Complex32]; 4], s: &RowSpec) {
-    let (a, n) = (s.a, s.n);
-    let half = n / 2;
-    if a == half {
-        for o in out {
-            o.fill(Complex32::default());
+impl Spectrum<'_> {
+    /// `h(k, t)` of stored row m (kx index m < N/2) into `scratch.h` (n values).
+    ///
+    /// Three loops over the row, each over plain arrays without calls, so the compiler vectorises
+    /// them: the phases in f64 turns reduced to f32, their sines and cosines, and the sum of the
+    /// two rotated amplitudes. Same arithmetic per value as a single loop would do.
+    #[inline(always)]
+    fn evolve_row(&self, m: usize, scratch: &mut TaskScratch) {
+        let r = m * self.n..(m + 1) * self.n;
+        let t = self.t;
+        let TaskScratch { h, turns, sin, cos, .. } = scratch;
+        for (o, &f) in turns.iter_mut().zip(&self.cycles[r.clone()]) {
+            *o = reduce_turns(f * t);
         }
-        return;
+        for ((&c, s), co) in turns.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
+            (*s, *co) = sin_cos_turns(c);
+        }
+        for ((((o, &a), &b), &s), &c) in h.iter_mut().zip(&self.h0[r.clone()]).zip(&self.hm[r]).zip(&*sin).zip(&*cos) {
+            *o = combine(a, b, s, c);
+        }
     }
-    if a < half {
-        let src = &s.ht[a * n..(a + 1) * n];
-        fill_rows_from(out, s, |b| src[b]);
-    } else {
-        // Row -kx is the mirror of row kx: h(-k) = conj(h(k)), column -kz.
-        let src = &s.ht[(n - a) * n..(n - a + 1) * n];
-        let mask = n - 1;
-        fill_rows_from(out, s, |b| src[(n - b) & mask].conj());
+
+    /// Row kx = m of the four packed spectra, from that row's `h(k, t)`.
+    #[inline(always)]
+    fn fill_row(&self, m: usize, h: &[Complex32], out: [&mut [Complex32]; 4]) {
+        let n = self.n;
+        let l = &self.lambda_over_k[m * n..(m + 1) * n];
+        let kx = self.kk[m];
+        let [o0, o1, o2, o3] = out;
+        let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
+        for b in 0..n {
+            write_multiplied([o0, o1, o2, o3], b, h[b], kx, self.kk[b], l[b]);
+        }
+    }
+
+    /// Row kx = -m (index N - m) of the four packed spectra, from row m's `h(k, t)`:
+    /// `h(-kx, kz) = conj(h(kx, -kz))`, and |k| is the same, so is `λ/k`.
+    #[inline(always)]
+    fn fill_mirror_row(&self, m: usize, h: &[Complex32], out: [&mut [Complex32]; 4]) {
+        let n = self.n;
+        let l = &self.lambda_over_k[m * n..(m + 1) * n];
+        let kx = -self.kk[m];
+        let [o0, o1, o2, o3] = out;
+        let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
+        let h = &h[..n];
+        write_multiplied([o0, o1, o2, o3], 0, h[0].conj(), kx, self.kk[0], l[0]);
+        for b in 1..n {
+            write_multiplied([o0, o1, o2, o3], b, h[n - b].conj(), kx, self.kk[b], l[b]);
+        }
     }
 }
 
-/// [`fill_rows`] for a row whose `h(k, t)` at column b is `h(b)`.
-#[inline(always)]
-fn fill_rows_from(out: [&mut [Complex32]; 4], s: &RowSpec, h: impl Fn(usize) -> Complex32) {
-    let [o0, o1, o2, o3] = out;
-    let n = s.n;
-    let kx = s.kk[s.a];
-    let kz = &s.kk[..n];
-    let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
-    for b in 0..n {
-        let h = h(b);
-        let m = pair_multipliers(kx, kz[b], s.lambda);
-        o0[b] = h * m[PAIR_H_DX];
-        o1[b] = h * m[PAIR_DZ_HX];
-        o2[b] = h * m[PAIR_HZ_DXX];
-        o3[b] = h * m[PAIR_DZZ_DXZ];
-    }
-}
-
-/// Spectral multipliers of the four field pairs at (kx, kz), indexed by `PAIR_*`: each pair's
-/// packed spectrum is its multiplier times h.
+/// Writes entry b of the four pairs' packed spectra: each pair's spectral multiplier at (kx, kz)
+/// times h, with `l = λ/|k|` (0 at k = 0).
 ///
-/// With `A + iB` packing: (h, Dx): `1 + i (i λ kx/k)`; (Dz, hx): `i λ kz/k + i (i kx)`;
-/// (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`.
+/// With `A + iB` packing the multipliers are (h, Dx): `1 + i (i λ kx/k)`; (Dz, hx):
+/// `i λ kz/k + i (i kx)`; (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`,
+/// written out so that their zero parts cost nothing.
 #[inline(always)]
-fn pair_multipliers(kx: f32, kz: f32, lambda: f32) -> [Complex32; 4] {
-    let k2 = kx * kx + kz * kz;
-    let inv_k = if k2 > 0.0 { 1.0 / k2.sqrt() } else { 0.0 };
-    let l = lambda * inv_k;
-    [
-        Complex32::new(1.0 - l * kx, 0.0),
-        Complex32::new(-kx, l * kz),
-        Complex32::new(0.0, kz - l * kx * kx),
-        Complex32::new(-l * kz * kz, -l * kx * kz),
-    ]
+fn write_multiplied(out: [&mut [Complex32]; 4], b: usize, h: Complex32, kx: f32, kz: f32, l: f32) {
+    let s0 = 1.0 - l * kx;
+    out[PAIR_H_DX][b] = Complex32::new(h.re * s0, h.im * s0);
+    let (p, q) = (-kx, l * kz);
+    out[PAIR_DZ_HX][b] = Complex32::new(h.re * p - h.im * q, h.re * q + h.im * p);
+    let r = kz - l * kx * kx;
+    out[PAIR_HZ_DXX][b] = Complex32::new(-h.im * r, h.re * r);
+    let (u, v) = (-l * kz * kz, -l * kx * kz);
+    out[PAIR_DZZ_DXZ][b] = Complex32::new(h.re * u - h.im * v, h.re * v + h.im * u);
 }

@@ -1,5 +1,6 @@
 //! Checks of the FFT ocean against its oracle and against oceanography.
 
+use super::cascade::{PAIR_DZZ_DXZ, PAIR_HZ_DXX};
 use super::*;
 use crate::spectrum::{u19_5_from_u10, Spreading, G};
 
@@ -279,6 +280,25 @@ fn foam_appears_on_a_rough_sea_and_not_on_a_calm_one() {
     let calm = ocean(&FftOceanParams { wind_speed: 3.0, choppiness: 0.5, ..params(128, 200.0) });
     assert!(rough.sea_state().foam_coverage > 1e-4, "{}", rough.sea_state().foam_coverage);
     assert_eq!(calm.sea_state().foam_coverage, 0.0);
+}
+
+#[test]
+fn foam_fused_into_the_row_pass_equals_the_stand_alone_update_with_persistence() {
+    // Foam is computed inside the row pass; the stand-alone FoamField::update over the finished
+    // fields must give the same values, persistence included (fade over three steps).
+    let p = FftOceanParams { wind_speed: 20.0, choppiness: 1.5, foam_fade_s: 2.0, ..params(64, 150.0) };
+    let mut o = ocean(&p);
+    let mut reference = FoamField::new(64, p.foam_threshold, p.foam_fade_s);
+    for t in [0.0, 0.3, 0.6, 1.1] {
+        o.advance(t).unwrap();
+        let c = &o.cascades[0];
+        reference.update(t, |i, j| {
+            let idx = j * c.n + i;
+            jacobian(c.fields[PAIR_HZ_DXX][idx].im, c.fields[PAIR_DZZ_DXZ][idx].re, c.fields[PAIR_DZZ_DXZ][idx].im)
+        });
+        assert!(o.foam.values == reference.values, "t = {t}");
+    }
+    assert!(reference.mean() > 1e-4, "the case must have foam: {}", reference.mean());
 }
 
 #[test]
