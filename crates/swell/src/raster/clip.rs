@@ -36,6 +36,21 @@ pub fn outcode(p: Vec4) -> u8 {
     code
 }
 
+/// Outcode against the view volume itself (|x|, |y| <= w, -w <= z <= w; no guard band): bit i set
+/// when the point is strictly outside plane i. A triangle whose three codes share a bit lies wholly
+/// on the outside of that plane, so none of it is visible and it covers no pixel; per-vertex work
+/// (lighting) that only such triangles use can be skipped without changing the image.
+pub fn view_outcode(p: Vec4) -> u8 {
+    let mut code = 0;
+    let planes = [p.z + p.w, p.w - p.z, p.x + p.w, p.w - p.x, p.y + p.w, p.w - p.y];
+    for (i, d) in planes.into_iter().enumerate() {
+        if d < 0.0 {
+            code |= 1 << i;
+        }
+    }
+    code
+}
+
 /// A convex polygon of at most [`MAX_CLIPPED`] vertices.
 #[derive(Clone, Copy, Debug)]
 pub struct Polygon<V> {

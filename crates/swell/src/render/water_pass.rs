@@ -4,10 +4,13 @@
 //! Gouraud a colour, Phong and Blinn-Phong the world position, normal and foam
 //! ([`SurfaceVarying`]), shaded per pixel.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::FrameContext;
+use crate::raster::clip::view_outcode;
 use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
 use crate::scene::TerrainBody;
 use crate::scene::WaterBody;
@@ -21,6 +24,27 @@ pub struct Scratch {
     draw_plain: DrawScratch<()>,
     draw_colored: DrawScratch<Vec3>,
     draw_surface: DrawScratch<SurfaceVarying>,
+    /// [`view_outcode`] of each vertex (Gouraud).
+    outcodes: Vec<u8>,
+    /// Whether a vertex belongs to a triangle not wholly outside the view (Gouraud).
+    visible: Vec<AtomicBool>,
+}
+
+/// Sets `visible[v]` for every vertex of a triangle whose vertices' outcodes share no bit (it may
+/// cover a pixel), and clears it for the rest. Parallel over triangles; the stores only ever write
+/// `true` after the clear, so the result does not depend on their order or the thread count.
+fn mark_visible_vertices(indices: &[u32], outcodes: &[u8], visible: &mut Vec<AtomicBool>) {
+    visible.resize_with(outcodes.len(), AtomicBool::default);
+    visible.par_iter_mut().for_each(|v| *v.get_mut() = false);
+    let visible = &*visible;
+    indices.par_chunks_exact(3).for_each(|t| {
+        let (a, b, c) = (t[0] as usize, t[1] as usize, t[2] as usize);
+        if outcodes[a] & outcodes[b] & outcodes[c] == 0 {
+            for v in [a, b, c] {
+                visible[v].store(true, Ordering::Relaxed);
+            }
+        }
+    });
 }
 
 /// Draws `water` into `fb`, reusing `clip_vertices`, `face_colors` and `scratch`; `terrain` is
@@ -71,10 +95,22 @@ pub fn draw(
             });
         }
         Shading::Gouraud => {
-            clip_vertices.resize(mesh.positions.len(), ClipVertex::default());
+            // Lighting a vertex is the costly part, and on a large patch many vertices belong only
+            // to triangles wholly outside the view: light only the others (the image is the same).
+            let n = mesh.positions.len();
+            clip_vertices.resize(n, ClipVertex::default());
+            scratch.outcodes.resize(n, 0);
+            clip_vertices.par_iter_mut().zip(scratch.outcodes.par_iter_mut()).enumerate().for_each(|(i, (cv, oc))| {
+                let position = clip(mesh.positions[i]);
+                *oc = view_outcode(position);
+                *cv = ClipVertex { position, varying: Vec3::ZERO };
+            });
+            mark_visible_vertices(&mesh.indices, &scratch.outcodes, &mut scratch.visible);
+            let visible = &scratch.visible;
             clip_vertices.par_iter_mut().enumerate().for_each(|(i, cv)| {
-                let (p, n) = (mesh.positions[i], mesh.normals[i]);
-                *cv = ClipVertex { position: clip(p), varying: shade_water(env, &look, lobe, p, n, foam(i)) };
+                if visible[i].load(Ordering::Relaxed) {
+                    cv.varying = shade_water(env, &look, lobe, mesh.positions[i], mesh.normals[i], foam(i));
+                }
             });
             draw_with(&mut scratch.draw_colored, fb, clip_vertices, &mesh.indices, Cull::None, &|f| f.varying);
         }
@@ -90,5 +126,39 @@ pub fn draw(
                 shade_water(env, &look, lobe, v.position, v.normal.normalize_or(Vec3::Y), v.foam)
             });
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_vertices_of_triangles_that_may_be_seen_are_lit() {
+        // Vertex outcodes: 0 inside; 0b100 left of the view; 0b1000 right of it; 0b1 behind the eye.
+        let outcodes = [0, 0b100, 0b100, 0b100, 0b1000, 0b1, 0b1100];
+        let indices = [
+            1, 2, 3, // wholly left of the view: not seen
+            0, 1, 2, // one vertex inside: all three lit
+            3, 4, 5, // left, right, behind: no common plane, may cross the view: lit
+            2, 3, 6, // left, left, left+right: all outside the left plane: not seen on its own
+        ];
+        let mut visible = Vec::new();
+        mark_visible_vertices(&indices, &outcodes, &mut visible);
+        let lit: Vec<bool> = visible.iter().map(|v| v.load(Ordering::Relaxed)).collect();
+        assert_eq!(lit, [true, true, true, true, true, true, false]);
+        // Reusing the buffer clears what the last frame marked.
+        mark_visible_vertices(&indices[..3], &outcodes, &mut visible);
+        assert!(visible.iter().all(|v| !v.load(Ordering::Relaxed)));
+    }
+
+    #[test]
+    fn view_outcodes_mark_the_planes_a_point_is_outside_of() {
+        assert_eq!(view_outcode(Vec4::new(0.0, 0.0, 0.0, 1.0)), 0);
+        assert_eq!(view_outcode(Vec4::new(1.0, -1.0, 1.0, 1.0)), 0, "the boundary is inside");
+        assert_eq!(view_outcode(Vec4::new(-1.5, 0.0, 0.0, 1.0)), 0b100);
+        assert_eq!(view_outcode(Vec4::new(1.5, 2.0, 0.0, 1.0)), 0b10_1000);
+        assert_eq!(view_outcode(Vec4::new(0.0, 0.0, -2.0, 1.0)), 0b1, "in front of the near plane");
+        assert_eq!(view_outcode(Vec4::new(0.0, 0.0, 2.0, 1.0)), 0b10, "beyond the far plane");
     }
 }
