@@ -20,6 +20,7 @@
 
 mod blender;
 mod cascade;
+mod fill_simd;
 mod params;
 
 use std::time::Instant;

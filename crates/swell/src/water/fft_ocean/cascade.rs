@@ -49,6 +49,7 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
 use rustfft::{Fft, FftPlanner};
 
+use super::fill_simd;
 use super::jacobian;
 use crate::math::{reduce_turns, sin_cos_turns};
 use crate::spectrum::DirectionalSpectrum;
@@ -106,6 +107,8 @@ pub(super) struct Cascade {
     wavenumbers: Vec<f32>,
     fft: Arc<dyn Fft<f32>>,
     scratch: Vec<TaskScratch>,
+    /// Whether the CPU has AVX2, checked once in `new`.
+    avx2: bool,
 }
 
 /// Buffers of one parallel task, allocated in `new`.
@@ -289,6 +292,7 @@ impl Cascade {
             wavenumbers,
             fft,
             scratch,
+            avx2: fill_simd::available(),
         }
     }
 
@@ -317,6 +321,7 @@ impl Cascade {
             cycles: &self.cycles,
             lambda_over_k: &self.lambda_over_k,
             kk: &self.wavenumbers,
+            avx2: self.avx2,
         };
         let fft = &self.fft;
         let [w0, w1, w2, w3] = &mut self.work;
@@ -459,6 +464,9 @@ struct Spectrum<'a> {
     lambda_over_k: &'a [f32],
     /// kx or kz (rad/m) of each FFT index.
     kk: &'a [f32],
+    /// Whether the CPU has AVX2 (the fill then uses `fill_simd`).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    avx2: bool,
 }
 
 impl Spectrum<'_> {
@@ -491,8 +499,15 @@ impl Spectrum<'_> {
         let kx = self.kk[m];
         let [o0, o1, o2, o3] = out;
         let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
-        for b in 0..n {
-            write_multiplied([o0, o1, o2, o3], b, h[b], kx, self.kk[b], l[b]);
+        let (h, kk) = (&h[..n], &self.kk[..n]);
+        let mut start = 0;
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU reports AVX2.
+            start = unsafe { fill_simd::fill([o0, o1, o2, o3], h, kx, kk, l, false) };
+        }
+        for b in start..n {
+            write_multiplied([o0, o1, o2, o3], b, h[b], kx, kk[b], l[b]);
         }
     }
 
@@ -505,10 +520,16 @@ impl Spectrum<'_> {
         let kx = -self.kk[m];
         let [o0, o1, o2, o3] = out;
         let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
-        let h = &h[..n];
-        write_multiplied([o0, o1, o2, o3], 0, h[0].conj(), kx, self.kk[0], l[0]);
-        for b in 1..n {
-            write_multiplied([o0, o1, o2, o3], b, h[n - b].conj(), kx, self.kk[b], l[b]);
+        let (h, kk) = (&h[..n], &self.kk[..n]);
+        write_multiplied([o0, o1, o2, o3], 0, h[0].conj(), kx, kk[0], l[0]);
+        let mut start = 1;
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `fill_row`.
+            start = unsafe { fill_simd::fill([o0, o1, o2, o3], h, kx, kk, l, true) };
+        }
+        for b in start..n {
+            write_multiplied([o0, o1, o2, o3], b, h[n - b].conj(), kx, kk[b], l[b]);
         }
     }
 }
@@ -520,7 +541,7 @@ impl Spectrum<'_> {
 /// `i λ kz/k + i (i kx)`; (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`,
 /// written out so that their zero parts cost nothing.
 #[inline(always)]
-fn write_multiplied(out: [&mut [Complex32]; 4], b: usize, h: Complex32, kx: f32, kz: f32, l: f32) {
+pub(super) fn write_multiplied(out: [&mut [Complex32]; 4], b: usize, h: Complex32, kx: f32, kz: f32, l: f32) {
     let s0 = 1.0 - l * kx;
     out[PAIR_H_DX][b] = Complex32::new(h.re * s0, h.im * s0);
     let (p, q) = (-kx, l * kz);
