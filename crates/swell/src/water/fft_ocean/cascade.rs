@@ -540,6 +540,9 @@ impl Spectrum<'_> {
 /// With `A + iB` packing the multipliers are (h, Dx): `1 + i (i λ kx/k)`; (Dz, hx):
 /// `i λ kz/k + i (i kx)`; (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`,
 /// written out so that their zero parts cost nothing.
+///
+/// The column pass uses it for the entries `fill_simd::fill` leaves (all of them without AVX2),
+/// which computes the same values four entries at a time.
 #[inline(always)]
 pub(super) fn write_multiplied(out: [&mut [Complex32]; 4], b: usize, h: Complex32, kx: f32, kz: f32, l: f32) {
     let s0 = 1.0 - l * kx;
