@@ -22,6 +22,7 @@ mod blender;
 mod cascade;
 mod fill_simd;
 mod params;
+mod transpose_simd;
 
 use std::time::Instant;
 

@@ -51,6 +51,7 @@ use rustfft::{Fft, FftPlanner};
 
 use super::fill_simd;
 use super::jacobian;
+use super::transpose_simd;
 use crate::math::{reduce_turns, sin_cos_turns};
 use crate::spectrum::DirectionalSpectrum;
 use crate::water::foam_coverage;
@@ -366,7 +367,7 @@ impl Cascade {
     pub fn row_pass(&mut self, foam: Option<FoamRows>) {
         let n = self.n;
         let rows = ROWS_PER_TASK.min(n);
-        let (work, fft, slots) = (&self.work, &self.fft, &self.slot_offsets[..]);
+        let (work, fft, slots, avx2) = (&self.work, &self.fft, &self.slot_offsets[..], self.avx2);
         let [f0, f1, f2, f3] = &mut self.fields;
         let chunk = rows * n;
         let tasks = f0
@@ -384,6 +385,12 @@ impl Cascade {
                 for a in (0..n).step_by(4) {
                     let column = |i: usize| &src[slots[a + i] + z0..slots[a + i] + z0 + rows];
                     let (c0, c1, c2, c3) = (column(0), column(1), column(2), column(3));
+                    #[cfg(target_arch = "x86_64")]
+                    if avx2 {
+                        // SAFETY: `avx2` is set only when the CPU reports AVX2.
+                        unsafe { transpose_simd::transpose4([c0, c1, c2, c3], block, n, a) };
+                        continue;
+                    }
                     for ((((row, &v0), &v1), &v2), &v3) in block.chunks_exact_mut(n).zip(c0).zip(c1).zip(c2).zip(c3) {
                         row[a..a + 4].copy_from_slice(&[v0, v1, v2, v3]);
                     }
