@@ -20,7 +20,9 @@
 
 mod blender;
 mod cascade;
+mod fill_simd;
 mod params;
+mod transpose_simd;
 
 use std::time::Instant;
 

@@ -49,7 +49,9 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
 use rustfft::{Fft, FftPlanner};
 
+use super::fill_simd;
 use super::jacobian;
+use super::transpose_simd;
 use crate::math::{reduce_turns, sin_cos_turns};
 use crate::spectrum::DirectionalSpectrum;
 use crate::water::foam_coverage;
@@ -106,6 +108,8 @@ pub(super) struct Cascade {
     wavenumbers: Vec<f32>,
     fft: Arc<dyn Fft<f32>>,
     scratch: Vec<TaskScratch>,
+    /// Whether the CPU has AVX2, checked once in `new`.
+    avx2: bool,
 }
 
 /// Buffers of one parallel task, allocated in `new`.
@@ -289,6 +293,7 @@ impl Cascade {
             wavenumbers,
             fft,
             scratch,
+            avx2: fill_simd::available(),
         }
     }
 
@@ -317,6 +322,7 @@ impl Cascade {
             cycles: &self.cycles,
             lambda_over_k: &self.lambda_over_k,
             kk: &self.wavenumbers,
+            avx2: self.avx2,
         };
         let fft = &self.fft;
         let [w0, w1, w2, w3] = &mut self.work;
@@ -361,7 +367,7 @@ impl Cascade {
     pub fn row_pass(&mut self, foam: Option<FoamRows>) {
         let n = self.n;
         let rows = ROWS_PER_TASK.min(n);
-        let (work, fft, slots) = (&self.work, &self.fft, &self.slot_offsets[..]);
+        let (work, fft, slots, avx2) = (&self.work, &self.fft, &self.slot_offsets[..], self.avx2);
         let [f0, f1, f2, f3] = &mut self.fields;
         let chunk = rows * n;
         let tasks = f0
@@ -379,6 +385,12 @@ impl Cascade {
                 for a in (0..n).step_by(4) {
                     let column = |i: usize| &src[slots[a + i] + z0..slots[a + i] + z0 + rows];
                     let (c0, c1, c2, c3) = (column(0), column(1), column(2), column(3));
+                    #[cfg(target_arch = "x86_64")]
+                    if avx2 {
+                        // SAFETY: `avx2` is set only when the CPU reports AVX2.
+                        unsafe { transpose_simd::transpose4([c0, c1, c2, c3], block, n, a) };
+                        continue;
+                    }
                     for ((((row, &v0), &v1), &v2), &v3) in block.chunks_exact_mut(n).zip(c0).zip(c1).zip(c2).zip(c3) {
                         row[a..a + 4].copy_from_slice(&[v0, v1, v2, v3]);
                     }
@@ -459,6 +471,9 @@ struct Spectrum<'a> {
     lambda_over_k: &'a [f32],
     /// kx or kz (rad/m) of each FFT index.
     kk: &'a [f32],
+    /// Whether the CPU has AVX2 (the fill then uses `fill_simd`).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    avx2: bool,
 }
 
 impl Spectrum<'_> {
@@ -491,8 +506,15 @@ impl Spectrum<'_> {
         let kx = self.kk[m];
         let [o0, o1, o2, o3] = out;
         let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
-        for b in 0..n {
-            write_multiplied([o0, o1, o2, o3], b, h[b], kx, self.kk[b], l[b]);
+        let (h, kk) = (&h[..n], &self.kk[..n]);
+        let mut start = 0;
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU reports AVX2.
+            start = unsafe { fill_simd::fill([o0, o1, o2, o3], h, kx, kk, l, false) };
+        }
+        for b in start..n {
+            write_multiplied([o0, o1, o2, o3], b, h[b], kx, kk[b], l[b]);
         }
     }
 
@@ -505,10 +527,16 @@ impl Spectrum<'_> {
         let kx = -self.kk[m];
         let [o0, o1, o2, o3] = out;
         let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
-        let h = &h[..n];
-        write_multiplied([o0, o1, o2, o3], 0, h[0].conj(), kx, self.kk[0], l[0]);
-        for b in 1..n {
-            write_multiplied([o0, o1, o2, o3], b, h[n - b].conj(), kx, self.kk[b], l[b]);
+        let (h, kk) = (&h[..n], &self.kk[..n]);
+        write_multiplied([o0, o1, o2, o3], 0, h[0].conj(), kx, kk[0], l[0]);
+        let mut start = 1;
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `fill_row`.
+            start = unsafe { fill_simd::fill([o0, o1, o2, o3], h, kx, kk, l, true) };
+        }
+        for b in start..n {
+            write_multiplied([o0, o1, o2, o3], b, h[n - b].conj(), kx, kk[b], l[b]);
         }
     }
 }
@@ -519,8 +547,11 @@ impl Spectrum<'_> {
 /// With `A + iB` packing the multipliers are (h, Dx): `1 + i (i λ kx/k)`; (Dz, hx):
 /// `i λ kz/k + i (i kx)`; (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`,
 /// written out so that their zero parts cost nothing.
+///
+/// The column pass uses it for the entries `fill_simd::fill` leaves (all of them without AVX2),
+/// which computes the same values four entries at a time.
 #[inline(always)]
-fn write_multiplied(out: [&mut [Complex32]; 4], b: usize, h: Complex32, kx: f32, kz: f32, l: f32) {
+pub(super) fn write_multiplied(out: [&mut [Complex32]; 4], b: usize, h: Complex32, kx: f32, kz: f32, l: f32) {
     let s0 = 1.0 - l * kx;
     out[PAIR_H_DX][b] = Complex32::new(h.re * s0, h.im * s0);
     let (p, q) = (-kx, l * kz);
