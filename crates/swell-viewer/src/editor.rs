@@ -48,7 +48,8 @@ impl SceneEditor {
     }
 
     /// Validates the draft and commits it. The world is rebuilt (models and meshes) only when
-    /// `[water]` changed; camera, lights, sky and render settings are swapped in place. On error
+    /// [`World::needs_rebuild_for`] says so (water or terrain changed); camera, lights, sky and
+    /// render settings are swapped in place. On error
     /// the previous scene stays and the error is kept for the panel.
     pub fn apply(&mut self) -> Result<()> {
         let result = self.commit();
@@ -60,8 +61,7 @@ impl SceneEditor {
         if self.draft == self.world.scene {
             return Ok(());
         }
-        // Water and terrain are built into the world (the water model may need the depth below).
-        if self.draft.water != self.world.scene.water || self.draft.terrain != self.world.scene.terrain {
+        if self.world.needs_rebuild_for(&self.draft) {
             let time = self.world.time();
             let mut world = World::new(self.draft.clone())?;
             world.update(time)?;

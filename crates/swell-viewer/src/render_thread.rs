@@ -170,7 +170,7 @@ impl Worker {
 /// terrain changed, otherwise only the scene (camera, lights, sky, render settings) swapped.
 fn follow(world: &mut Option<World>, scene: Scene) -> Result<()> {
     match world {
-        Some(w) if w.scene.water == scene.water && w.scene.terrain == scene.terrain => w.scene = scene,
+        Some(w) if !w.needs_rebuild_for(&scene) => w.scene = scene,
         _ => *world = Some(World::new(scene)?),
     }
     Ok(())

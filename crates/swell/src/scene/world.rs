@@ -77,6 +77,14 @@ impl World {
         Ok(world)
     }
 
+    /// Whether showing `scene` needs a new world ([`World::new`]) rather than a swap of
+    /// [`World::scene`]: water and terrain are built into the world (models, meshes, the water's
+    /// state, and the depths the water model may take from the terrain below), everything else
+    /// (camera, lights, sky, render settings) is read from the scene at draw time.
+    pub fn needs_rebuild_for(&self, scene: &Scene) -> bool {
+        scene.water != self.scene.water || scene.terrain != self.scene.terrain
+    }
+
     /// Moves every model to time `t` (s) and displaces the meshes.
     ///
     /// Fails only when a time-stepped model became unstable; the meshes then keep the last good
