@@ -7,6 +7,7 @@ use std::rc::Rc;
 use std::time::Instant;
 
 use eframe::egui::{self, Color32, Key, PointerButton, Rect, Sense, ViewportCommand};
+use swell::scene::TerrainBody;
 use swell::{Error, Result};
 
 use crate::camera_control::CameraRig;
@@ -180,17 +181,13 @@ impl ViewerApp {
             return;
         };
         let click = self.panels.click_drop;
-        let result = click.validate().and_then(|()| self.editor.disturb_water(at.x, at.y, click.depth, click.radius));
-        match result {
-            Ok(true) => {
-                // The render thread's world, which is the one shown, gets the same dent.
-                let d =
-                    crate::render_thread::Disturbance { x: at.x, z: at.y, depth: click.depth, radius: click.radius };
-                self.view.disturb(d);
-                self.run_error = None;
-            }
-            Ok(false) => {}
-            Err(e) => self.run_error = Some(e.to_string()),
+        if let Err(e) = click.validate() {
+            self.run_error = Some(e.to_string());
+        } else if self.editor.disturb_water() {
+            // The render thread's world, the one shown, takes the dent.
+            let d = crate::render_thread::Disturbance { x: at.x, z: at.y, depth: click.depth, radius: click.radius };
+            self.view.disturb(d);
+            self.run_error = None;
         }
     }
 
@@ -216,10 +213,13 @@ impl ViewerApp {
                     let [w, h] = self.view.size();
                     format!("saved the {w}x{h} view to {}", p.display())
                 }),
-                FileRequest::SaveHeightmap(p) => match &self.editor.world_mut().terrain {
-                    Some(t) => swell::terrain::write_heightmap(&p, &t.field).map(|s| {
-                        format!("saved the heightmap to {} ({} m per grey range)", p.display(), s.height_scale)
-                    }),
+                // Generators are deterministic: the spec rebuilds the very field on screen.
+                FileRequest::SaveHeightmap(p) => match &self.editor.scene().terrain {
+                    Some(spec) => {
+                        TerrainBody::new(spec).and_then(|t| swell::terrain::write_heightmap(&p, &t.field)).map(|s| {
+                            format!("saved the heightmap to {} ({} m per grey range)", p.display(), s.height_scale)
+                        })
+                    }
                     None => Err(Error::invalid("terrain", "there is no terrain to save")),
                 },
                 FileRequest::SaveWindow(p) => {
@@ -345,14 +345,19 @@ impl ViewerApp {
     /// depends on changed (always, in the scripted mode).
     fn draw_view(&mut self, ctx: &egui::Context, size: [u32; 2], frame_dt: std::time::Duration) {
         match self.view.collect() {
-            Some(Ok(t)) => {
+            Some((revision, Ok(t))) => {
                 self.stats.record(frame_dt, t.simulate, t.render, t.upload);
                 self.rendered += 1;
+                self.editor.frame_shown(revision);
             }
-            Some(Err(e)) => {
-                // A stateful model went unstable: stop the clock so the error stays readable.
-                self.clock.playing = false;
-                self.run_error = Some(e.to_string());
+            Some((revision, Err(e))) => {
+                // A commit that does not build is undone and shown as a refusal in the panel;
+                // otherwise a stateful model went unstable: stop the clock so the error stays
+                // readable.
+                if !self.editor.frame_failed(revision, &e) {
+                    self.clock.playing = false;
+                    self.run_error = Some(e.to_string());
+                }
             }
             None => {}
         }

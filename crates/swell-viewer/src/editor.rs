@@ -1,40 +1,50 @@
-//! The scene being edited: the panel's draft, the last valid scene and the [`World`] built from it.
+//! The scene being edited: the panel's draft, the last valid scene, and the last scene the view
+//! has shown.
 //!
 //! The panel edits [`SceneEditor::draft`] freely; [`SceneEditor::apply`] validates the draft and
-//! either commits it (rebuilding the world only when the water changed) or refuses it, keeping the
-//! previous valid scene running and the reason in [`SceneEditor::error`]. The draft keeps the
-//! refused value, so the user sees what they typed next to why it was refused.
+//! either commits it or refuses it, keeping the previous valid scene running and the reason in
+//! [`SceneEditor::error`]. The draft keeps the refused value, so the user sees what they typed next
+//! to why it was refused.
+//!
+//! The editor builds no world of its own: the render thread's world is the one simulated and
+//! shown, and a second one here would be rebuilt on every water or terrain edit (a slider drag
+//! rebuilds every frame) for nothing but a check. Validation ([`Scene::validate`]) catches every
+//! bad value; what only building finds (a heightmap or texture file that cannot be read, a
+//! model that goes unstable at once) comes back from the render thread as a failed frame, and
+//! [`SceneEditor::frame_failed`] then puts back the last scene that was shown, as a refusal.
+//! Whole scenes (the start, a loaded file) are still built here once, so that a bad file is
+//! refused before anything changes.
 
 use std::path::Path;
 
 use swell::scene::{Camera, Scene, World};
-use swell::Result;
+use swell::{Error, Result};
 
-/// Draft scene, committed scene and world; see the [module documentation](self).
+/// Draft, committed and last shown scene; see the [module documentation](self).
 pub struct SceneEditor {
     /// What the panel shows and edits. May be invalid; see [`SceneEditor::error`].
     pub draft: Scene,
-    world: World,
+    /// The last valid scene: what the view renders and what is saved.
+    scene: Scene,
+    /// The last committed scene a frame was rendered from, and its revision: where a commit
+    /// that fails to build falls back to.
+    shown: Scene,
+    shown_revision: u64,
     error: Option<String>,
     /// Bumped on every commit, so the view knows to render again.
     revision: u64,
 }
 
 impl SceneEditor {
-    /// Builds the world of `scene` (which must be valid: it was loaded by the CLI or a preset).
+    /// Starts editing `scene`, refused if it does not build (a file that cannot be read).
     pub fn new(scene: Scene) -> Result<Self> {
-        let world = World::new(scene.clone())?;
-        Ok(Self { draft: scene, world, error: None, revision: 0 })
+        World::new(scene.clone())?;
+        Ok(Self { draft: scene.clone(), shown: scene.clone(), scene, shown_revision: 0, error: None, revision: 0 })
     }
 
     /// The last valid scene: what is simulated, rendered and saved.
     pub fn scene(&self) -> &Scene {
-        &self.world.scene
-    }
-
-    /// The world built from [`SceneEditor::scene`].
-    pub fn world_mut(&mut self) -> &mut World {
-        &mut self.world
+        &self.scene
     }
 
     /// Why the draft was refused, if it was.
@@ -47,10 +57,8 @@ impl SceneEditor {
         self.revision
     }
 
-    /// Validates the draft and commits it. The world is rebuilt (models and meshes) only when
-    /// [`World::needs_rebuild_for`] says so (water or terrain changed); camera, lights, sky and
-    /// render settings are swapped in place. On error
-    /// the previous scene stays and the error is kept for the panel.
+    /// Validates the draft and commits it. On error the previous scene stays and the error is
+    /// kept for the panel.
     pub fn apply(&mut self) -> Result<()> {
         let result = self.commit();
         self.error = result.as_ref().err().map(ToString::to_string);
@@ -58,40 +66,56 @@ impl SceneEditor {
     }
 
     fn commit(&mut self) -> Result<()> {
-        if self.draft == self.world.scene {
+        if self.draft == self.scene {
             return Ok(());
         }
-        if self.world.needs_rebuild_for(&self.draft) {
-            let time = self.world.time();
-            let mut world = World::new(self.draft.clone())?;
-            world.update(time)?;
-            self.world = world;
-        } else {
-            self.draft.validate()?;
-            self.world.scene = self.draft.clone();
-        }
+        self.draft.validate()?;
+        self.scene = self.draft.clone();
         self.revision += 1;
         Ok(())
     }
 
-    /// Drops a dent `depth` m deep and `radius` m wide on the water at world (x, z) (a click on the
-    /// view) and redisplaces the mesh at the current time. Returns false, changing nothing, when
-    /// there is no water or its model has no state to disturb (closed-form models). A turned or
-    /// scaled patch gets the dent at the model-frame point under the click, sized so that it is
-    /// `depth` x `radius` in the world.
-    pub fn disturb_water(&mut self, x: f32, z: f32, depth: f32, radius: f32) -> Result<bool> {
-        let time = self.world.time();
-        if !self.world.disturb_water(x, z, depth, radius)? {
-            return Ok(false);
+    /// The view rendered a frame of `revision`: if it is the current one, its scene becomes the
+    /// fallback of a later commit that fails to build.
+    pub fn frame_shown(&mut self, revision: u64) {
+        if revision == self.revision && self.shown_revision != revision {
+            self.shown = self.scene.clone();
+            self.shown_revision = revision;
         }
-        self.world.update(if time.is_finite() { time } else { 0.0 })?;
+    }
+
+    /// The view failed to build or step the scene of `revision` with `error`. If that is the
+    /// current scene and differs from the last one shown, the commit is undone as a refusal:
+    /// the last shown scene comes back (with a new revision), the draft keeps what was typed,
+    /// and the error is kept for the panel. Returns whether it was undone; otherwise (the shown
+    /// scene itself failed, e.g. a spring mesh went unstable later on) there is nothing to go
+    /// back to and the caller reports the error.
+    pub fn frame_failed(&mut self, revision: u64, error: &Error) -> bool {
+        if revision != self.revision || self.scene == self.shown {
+            return false;
+        }
+        self.scene = self.shown.clone();
+        self.error = Some(error.to_string());
         self.revision += 1;
-        Ok(true)
+        self.shown_revision = self.revision;
+        true
+    }
+
+    /// A click at world (x, z) wants to drop a dent on the water. True, with a new revision so
+    /// that a paused view renders again, when the water's model takes disturbances (the spring
+    /// mesh); the caller hands the dent to the render thread, whose world is the one shown.
+    /// False, changing nothing, without water or for closed-form models.
+    pub fn disturb_water(&mut self) -> bool {
+        let takes = self.scene.water.as_ref().is_some_and(|w| w.model.takes_disturbances());
+        if takes {
+            self.revision += 1;
+        }
+        takes
     }
 
     /// Throws the draft away and shows the last valid scene again.
     pub fn revert(&mut self) {
-        self.draft = self.world.scene.clone();
+        self.draft = self.scene.clone();
         self.error = None;
     }
 
@@ -99,23 +123,25 @@ impl SceneEditor {
     /// rest of an invalid draft as it is. Refused if `camera` is invalid.
     pub fn set_camera(&mut self, camera: Camera) -> Result<()> {
         camera.validate("camera")?;
-        if camera != self.world.scene.camera {
+        if camera != self.scene.camera {
             self.draft.camera = camera;
-            self.world.scene.camera = camera;
+            self.scene.camera = camera;
+            self.shown.camera = camera;
             self.revision += 1;
         }
         Ok(())
     }
 
-    /// Replaces everything with `scene` (a loaded file); on error nothing changes.
+    /// Replaces everything with `scene` (a loaded file); on error (it does not build) nothing
+    /// changes.
     pub fn replace(&mut self, scene: Scene) -> Result<()> {
-        let time = self.world.time();
-        let mut world = World::new(scene.clone())?;
-        world.update(if time.is_finite() { time } else { 0.0 })?;
-        self.world = world;
-        self.draft = scene;
+        World::new(scene.clone())?;
+        self.draft = scene.clone();
+        self.shown = scene.clone();
+        self.scene = scene;
         self.error = None;
         self.revision += 1;
+        self.shown_revision = self.revision;
         Ok(())
     }
 
@@ -157,17 +183,26 @@ mod tests {
         }
     }
 
+    fn positions_at(scene: &Scene, t: f64) -> Vec<glam::Vec3> {
+        let mut w = World::new(scene.clone()).unwrap();
+        w.update(t).unwrap();
+        w.water.unwrap().mesh.positions
+    }
+
     #[test]
-    fn a_valid_draft_is_committed_and_rebuilds_the_water() {
+    fn a_valid_draft_is_committed() {
         let mut e = sea();
-        let h0 = e.world_mut().water.as_ref().unwrap().mesh.positions.clone();
+        let before = e.scene().clone();
         set_first_amplitude(&mut e.draft, 1.5);
         e.apply().unwrap();
         assert_eq!(e.scene(), &e.draft);
         assert_eq!(first_amplitude(e.scene()), 1.5);
         assert_eq!(e.revision(), 1);
-        // The rebuilt world really moves differently.
-        assert_ne!(e.world_mut().water.as_ref().unwrap().mesh.positions, h0);
+        // The committed scene really moves differently.
+        assert_ne!(positions_at(e.scene(), 1.0), positions_at(&before, 1.0));
+        // Committing the same draft again changes nothing.
+        e.apply().unwrap();
+        assert_eq!(e.revision(), 1);
     }
 
     #[test]
@@ -196,18 +231,47 @@ mod tests {
     }
 
     #[test]
-    fn non_water_edits_keep_the_world_and_invalid_cameras_are_refused() {
+    fn non_water_edits_commit_and_invalid_cameras_are_refused() {
         let mut e = sea();
-        e.world_mut().update(3.0).unwrap();
         e.draft.render.exposure = 2.0;
         e.draft.sky.zenith.x = 0.5;
         e.apply().unwrap();
-        assert_eq!(e.world_mut().time(), 3.0);
         assert_eq!(e.scene().render.exposure, 2.0);
         let mut bad = e.scene().camera;
         bad.eye = bad.target;
         assert!(e.set_camera(bad).is_err());
         assert_ne!(e.scene().camera.eye, e.scene().camera.target);
+    }
+
+    #[test]
+    fn a_commit_the_view_cannot_build_is_undone_as_a_refusal() {
+        let mut e = sea();
+        e.frame_shown(0);
+        let good = e.scene().clone();
+        // Valid by its values; only reading the file finds that it is missing.
+        e.draft.water.as_mut().unwrap().material.texture = Some("/no/such/texture.png".into());
+        e.apply().unwrap();
+        assert_eq!(e.revision(), 1);
+        let err = World::new(e.scene().clone()).err().expect("the texture file is missing");
+        // A late answer about an older revision changes nothing.
+        assert!(!e.frame_failed(0, &err));
+        assert!(e.frame_failed(1, &err));
+        assert_eq!(e.scene(), &good);
+        assert_eq!(e.revision(), 2, "a new revision, so the view follows the restored scene");
+        assert_eq!(e.error(), Some(err.to_string().as_str()));
+        assert!(e.draft.water.as_ref().unwrap().material.texture.is_some(), "the draft keeps what was typed");
+        // The shown scene failing (a model going unstable later) has nothing to go back to.
+        assert!(!e.frame_failed(2, &err));
+        // Once a frame of a commit is shown, that commit is the fallback.
+        e.draft = good.clone();
+        e.draft.render.exposure = 1.5;
+        e.apply().unwrap();
+        e.frame_shown(3);
+        set_first_amplitude(&mut e.draft, 0.7);
+        e.apply().unwrap();
+        assert!(e.frame_failed(4, &err));
+        assert_eq!(e.scene().render.exposure, 1.5);
+        assert_eq!(first_amplitude(e.scene()), first_amplitude(&good));
     }
 
     #[test]
@@ -226,48 +290,26 @@ mod tests {
         assert_eq!(loaded.scene(), e.scene());
         assert_eq!(loaded.draft, e.draft);
 
-        let pixels = |ed: &mut SceneEditor| {
-            ed.world_mut().update(2.5).unwrap();
-            let mut r = Renderer::new();
+        let pixels = |ed: &SceneEditor| {
+            let mut world = World::new(ed.scene().clone()).unwrap();
+            world.update(2.5).unwrap();
             let mut rgba = Vec::new();
             let s = ed.scene().render;
-            r.render_size(ed.world_mut(), 160, 90).encode_rgba8(s.exposure, s.gamma, &mut rgba);
+            Renderer::new().render_size(&world, 160, 90).encode_rgba8(s.exposure, s.gamma, &mut rgba);
             rgba
         };
-        assert_eq!(pixels(&mut e), pixels(&mut loaded));
+        assert_eq!(pixels(&e), pixels(&loaded));
     }
 
     #[test]
-    fn a_click_disturbs_the_spring_mesh_and_nothing_else() {
+    fn a_click_dents_only_models_with_state() {
         let mut e = SceneEditor::new(preset("springs").unwrap()).unwrap();
-        e.world_mut().update(1.0).unwrap();
         let rev = e.revision();
-        let before = e.world_mut().water.as_ref().unwrap().model.height_at(2.0, -3.0, 1.0);
-        assert!(e.disturb_water(2.0, -3.0, 0.5, 1.0).unwrap());
-        assert_eq!(e.revision(), rev + 1);
-        let w = e.world_mut().water.as_ref().unwrap();
-        let after = w.model.height_at(2.0, -3.0, 1.0);
-        assert!((before - after - 0.5).abs() < 1e-3, "{before} -> {after}");
-        // The mesh shown moved too: its lowest vertex is at least the dent deep.
-        let lowest = w.mesh.positions.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
-        assert!(lowest <= after + 1e-4);
-        assert!(e.disturb_water(0.0, 0.0, -1.0, 1.0).is_err());
+        assert!(e.disturb_water());
+        assert_eq!(e.revision(), rev + 1, "a paused view renders the dent");
         let mut sea = sea();
-        assert!(!sea.disturb_water(0.0, 0.0, 0.5, 1.0).unwrap());
+        assert!(!sea.disturb_water());
         assert_eq!(sea.revision(), 0);
-    }
-
-    #[test]
-    fn a_click_on_a_turned_and_scaled_spring_mesh_dents_the_water_under_it() {
-        let mut scene = preset("springs").unwrap();
-        let s = &mut scene.water.as_mut().unwrap().surface;
-        (s.yaw_deg, s.uniform_scale) = (90.0, 2.0);
-        let mut e = SceneEditor::new(scene).unwrap();
-        e.world_mut().update(1.0).unwrap();
-        let before = e.world_mut().water_height_at(2.0, -3.0).unwrap();
-        assert!(e.disturb_water(2.0, -3.0, 0.5, 1.0).unwrap());
-        let after = e.world_mut().water_height_at(2.0, -3.0).unwrap();
-        assert!((before - after - 0.5).abs() < 2e-3, "{before} -> {after}");
     }
 
     #[test]

@@ -86,33 +86,39 @@ impl LiveView {
     }
 
     /// Takes the frame in flight, waiting for it, and queues it for the next paint. None if no
-    /// frame was in flight; the error of a frame that failed (an unstable model).
-    pub fn collect(&mut self) -> Option<Result<StageTimes>> {
+    /// frame was in flight; otherwise the scene revision it was asked for, and its stage times or
+    /// why it failed (a scene that does not build, an unstable model).
+    pub fn collect(&mut self) -> Option<(u64, Result<StageTimes>)> {
         if !self.in_flight {
             return None;
         }
         self.in_flight = false;
+        // One frame is in flight at most: the last one requested.
+        let revision = self.requested.as_ref().map_or(0, |k| k.revision);
         let Some(outcome) = self.thread.as_ref().and_then(RenderThread::receive) else {
-            return Some(Err(Error::invalid("view", "the render thread stopped")));
+            return Some((revision, Err(Error::invalid("view", "the render thread stopped"))));
         };
-        Some(match outcome {
-            Ok(mut frame) => {
-                let mut slot = self.screen.lock();
-                // The frame goes on screen; the one it replaces (uploaded at the last paint)
-                // becomes the spare buffer of the next request.
-                std::mem::swap(&mut slot.pixels, &mut frame.pixels);
-                slot.mark_new(frame.size);
-                let mut times = frame.times;
-                times.upload = slot.last_upload;
-                self.spare = frame.pixels;
-                self.shown = true;
-                Ok(times)
-            }
-            Err((e, buffer)) => {
-                self.spare = buffer;
-                Err(e)
-            }
-        })
+        Some((
+            revision,
+            match outcome {
+                Ok(mut frame) => {
+                    let mut slot = self.screen.lock();
+                    // The frame goes on screen; the one it replaces (uploaded at the last paint)
+                    // becomes the spare buffer of the next request.
+                    std::mem::swap(&mut slot.pixels, &mut frame.pixels);
+                    slot.mark_new(frame.size);
+                    let mut times = frame.times;
+                    times.upload = slot.last_upload;
+                    self.spare = frame.pixels;
+                    self.shown = true;
+                    Ok(times)
+                }
+                Err((e, buffer)) => {
+                    self.spare = buffer;
+                    Err(e)
+                }
+            },
+        ))
     }
 
     /// Asks for the frame `key` of `scene` (which has revision `key.revision`) with `threads`

@@ -154,6 +154,13 @@ impl WaterModelSpec {
         }
     }
 
+    /// Whether the built model keeps a state that a click or a stone can disturb
+    /// ([`WaveModel::disturb`] returns true): the spring mesh. Closed-form models are functions
+    /// of time alone. Lets a caller (the viewer) decide without building the model.
+    pub fn takes_disturbances(&self) -> bool {
+        matches!(self, WaterModelSpec::Springs(_))
+    }
+
     /// Builds the model, validating its parameters.
     pub fn build(&self) -> Result<Box<dyn WaveModel>> {
         Ok(match self {
@@ -289,6 +296,16 @@ mod tests {
 
     fn parse(text: &str) -> Result<WaterSpec> {
         WaterSpec::from_table(toml::from_str(text).unwrap(), "test")
+    }
+
+    #[test]
+    fn takes_disturbances_says_what_the_built_model_does() {
+        for name in crate::scene::PRESETS.iter().map(|p| p.name) {
+            let Some(water) = crate::scene::preset(name).unwrap().water else { continue };
+            let mut model = water.model.build().unwrap();
+            let took = model.disturb(0.0, 0.0, 0.1, 1.0).unwrap();
+            assert_eq!(water.model.takes_disturbances(), took, "preset {name}");
+        }
     }
 
     #[test]

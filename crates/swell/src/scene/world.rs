@@ -216,4 +216,25 @@ mod tests {
             assert_eq!(e.to_string(), message);
         }
     }
+
+    #[test]
+    fn a_dent_on_a_turned_and_scaled_spring_mesh_lands_under_the_world_point() {
+        let mut scene = crate::scene::preset("springs").unwrap();
+        let s = &mut scene.water.as_mut().unwrap().surface;
+        (s.yaw_deg, s.uniform_scale) = (90.0, 2.0);
+        let mut w = World::new(scene).unwrap();
+        w.update(1.0).unwrap();
+        let before = w.water_height_at(2.0, -3.0).unwrap();
+        assert!(w.disturb_water(2.0, -3.0, 0.5, 1.0).unwrap());
+        w.update(1.0).unwrap();
+        let after = w.water_height_at(2.0, -3.0).unwrap();
+        assert!((before - after - 0.5).abs() < 2e-3, "{before} -> {after}");
+        // The mesh shows it: its lowest vertex is at least the dent deep.
+        let lowest = w.water.as_ref().unwrap().mesh.positions.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+        assert!(lowest <= after + 1e-4);
+        assert!(w.disturb_water(0.0, 0.0, -1.0, 1.0).is_err());
+        // Closed-form water has no state to dent.
+        let mut sea = World::new(crate::scene::preset("sea").unwrap()).unwrap();
+        assert!(!sea.disturb_water(0.0, 0.0, 0.5, 1.0).unwrap());
+    }
 }
