@@ -20,6 +20,7 @@
 
 mod blender;
 mod cascade;
+mod evolve_simd;
 mod fill_simd;
 mod params;
 mod transpose_simd;

@@ -49,6 +49,7 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
 use rustfft::{Fft, FftPlanner};
 
+use super::evolve_simd;
 use super::fill_simd;
 use super::jacobian;
 use super::transpose_simd;
@@ -447,8 +448,7 @@ impl Cascade {
 /// `h(k, t) = a e^{-iφ} + b e^{iφ}`, `φ = 2π f t`, for `a = h0(k)`, `b = conj(h0(-k))`, the
 /// frequency f (Hz) and time t (s). The phase is reduced in f64 turns, so the sea stays exact for
 /// any t up to about 2^51 / f.
-#[cfg(test)]
-fn evolve_one(a: Complex32, b: Complex32, f: f64, t: f64) -> Complex32 {
+pub(super) fn evolve_one(a: Complex32, b: Complex32, f: f64, t: f64) -> Complex32 {
     let (s, c) = sin_cos_turns(reduce_turns(f * t));
     combine(a, b, s, c)
 }
@@ -487,6 +487,16 @@ impl Spectrum<'_> {
         let r = m * self.n..(m + 1) * self.n;
         let t = self.t;
         let TaskScratch { h, turns, sin, cos, .. } = scratch;
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            let (h0, hm, cycles) = (&self.h0[r.clone()], &self.hm[r.clone()], &self.cycles[r]);
+            // SAFETY: `avx2` is set only when the CPU reports AVX2.
+            let done = unsafe { evolve_simd::evolve(h, h0, hm, cycles, t) };
+            for b in done..self.n {
+                h[b] = evolve_one(h0[b], hm[b], cycles[b], t);
+            }
+            return;
+        }
         for (o, &f) in turns.iter_mut().zip(&self.cycles[r.clone()]) {
             *o = reduce_turns(f * t);
         }
