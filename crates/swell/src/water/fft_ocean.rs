@@ -22,6 +22,7 @@ mod blender;
 mod cascade;
 mod evolve_simd;
 mod fill_simd;
+mod foam_simd;
 mod params;
 mod transpose_simd;
 

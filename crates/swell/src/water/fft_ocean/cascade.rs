@@ -51,6 +51,7 @@ use rustfft::{Fft, FftPlanner};
 
 use super::evolve_simd;
 use super::fill_simd;
+use super::foam_simd;
 use super::jacobian;
 use super::transpose_simd;
 use crate::math::{reduce_turns, sin_cos_turns};
@@ -411,6 +412,13 @@ impl Cascade {
                     let written = [&*o0, &*o1, &*o2, &*o3];
                     let (dxx, jac) = (written[PAIR_HZ_DXX], written[PAIR_DZZ_DXZ]);
                     // Foam follows the Jacobian of the rows this task has just written.
+                    let mut done = 0;
+                    #[cfg(target_arch = "x86_64")]
+                    if avx2 {
+                        // SAFETY: `avx2` is set only when the CPU reports AVX2.
+                        done = unsafe { foam_simd::update(foam, dxx, jac, threshold, decay) };
+                    }
+                    let (foam, dxx, jac) = (&mut foam[done..], &dxx[done..], &jac[done..]);
                     for ((v, dxx), dzz_dxz) in foam.iter_mut().zip(dxx).zip(jac) {
                         *v = foam_coverage(jacobian(dxx.im, dzz_dxz.re, dzz_dxz.im), threshold).max(*v * decay);
                     }
