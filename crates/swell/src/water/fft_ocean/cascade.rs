@@ -384,15 +384,16 @@ impl Cascade {
                 // Four kx at a time: each slot's `rows` values are contiguous (one or two cache
                 // lines), and each output row gets one 32-byte store per four kx; the task's
                 // `rows` output lines stay in L1. (N >= 16, so N is a multiple of 4.)
+                #[cfg(target_arch = "x86_64")]
+                if avx2 {
+                    // SAFETY: `avx2` is set only when the CPU reports AVX2.
+                    unsafe { transpose_simd::transpose_rows(src, slots, z0, rows, block, n) };
+                    fft.process_with_scratch(block, &mut scratch.fft);
+                    continue;
+                }
                 for a in (0..n).step_by(4) {
                     let column = |i: usize| &src[slots[a + i] + z0..slots[a + i] + z0 + rows];
                     let (c0, c1, c2, c3) = (column(0), column(1), column(2), column(3));
-                    #[cfg(target_arch = "x86_64")]
-                    if avx2 {
-                        // SAFETY: `avx2` is set only when the CPU reports AVX2.
-                        unsafe { transpose_simd::transpose4([c0, c1, c2, c3], block, n, a) };
-                        continue;
-                    }
                     for ((((row, &v0), &v1), &v2), &v3) in block.chunks_exact_mut(n).zip(c0).zip(c1).zip(c2).zip(c3) {
                         row[a..a + 4].copy_from_slice(&[v0, v1, v2, v3]);
                     }
