@@ -20,7 +20,9 @@
 
 mod blender;
 mod cascade;
+mod evolve_simd;
 mod fill_simd;
+mod foam_simd;
 mod params;
 mod transpose_simd;
 

@@ -49,7 +49,9 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
 use rustfft::{Fft, FftPlanner};
 
+use super::evolve_simd;
 use super::fill_simd;
+use super::foam_simd;
 use super::jacobian;
 use super::transpose_simd;
 use crate::math::{reduce_turns, sin_cos_turns};
@@ -382,15 +384,16 @@ impl Cascade {
                 // Four kx at a time: each slot's `rows` values are contiguous (one or two cache
                 // lines), and each output row gets one 32-byte store per four kx; the task's
                 // `rows` output lines stay in L1. (N >= 16, so N is a multiple of 4.)
+                #[cfg(target_arch = "x86_64")]
+                if avx2 {
+                    // SAFETY: `avx2` is set only when the CPU reports AVX2.
+                    unsafe { transpose_simd::transpose_rows(src, slots, z0, rows, block, n) };
+                    fft.process_with_scratch(block, &mut scratch.fft);
+                    continue;
+                }
                 for a in (0..n).step_by(4) {
                     let column = |i: usize| &src[slots[a + i] + z0..slots[a + i] + z0 + rows];
                     let (c0, c1, c2, c3) = (column(0), column(1), column(2), column(3));
-                    #[cfg(target_arch = "x86_64")]
-                    if avx2 {
-                        // SAFETY: `avx2` is set only when the CPU reports AVX2.
-                        unsafe { transpose_simd::transpose4([c0, c1, c2, c3], block, n, a) };
-                        continue;
-                    }
                     for ((((row, &v0), &v1), &v2), &v3) in block.chunks_exact_mut(n).zip(c0).zip(c1).zip(c2).zip(c3) {
                         row[a..a + 4].copy_from_slice(&[v0, v1, v2, v3]);
                     }
@@ -410,6 +413,13 @@ impl Cascade {
                     let written = [&*o0, &*o1, &*o2, &*o3];
                     let (dxx, jac) = (written[PAIR_HZ_DXX], written[PAIR_DZZ_DXZ]);
                     // Foam follows the Jacobian of the rows this task has just written.
+                    let mut done = 0;
+                    #[cfg(target_arch = "x86_64")]
+                    if avx2 {
+                        // SAFETY: `avx2` is set only when the CPU reports AVX2.
+                        done = unsafe { foam_simd::update(foam, dxx, jac, threshold, decay) };
+                    }
+                    let (foam, dxx, jac) = (&mut foam[done..], &dxx[done..], &jac[done..]);
                     for ((v, dxx), dzz_dxz) in foam.iter_mut().zip(dxx).zip(jac) {
                         *v = foam_coverage(jacobian(dxx.im, dzz_dxz.re, dzz_dxz.im), threshold).max(*v * decay);
                     }
@@ -447,8 +457,7 @@ impl Cascade {
 /// `h(k, t) = a e^{-iφ} + b e^{iφ}`, `φ = 2π f t`, for `a = h0(k)`, `b = conj(h0(-k))`, the
 /// frequency f (Hz) and time t (s). The phase is reduced in f64 turns, so the sea stays exact for
 /// any t up to about 2^51 / f.
-#[cfg(test)]
-fn evolve_one(a: Complex32, b: Complex32, f: f64, t: f64) -> Complex32 {
+pub(super) fn evolve_one(a: Complex32, b: Complex32, f: f64, t: f64) -> Complex32 {
     let (s, c) = sin_cos_turns(reduce_turns(f * t));
     combine(a, b, s, c)
 }
@@ -487,6 +496,16 @@ impl Spectrum<'_> {
         let r = m * self.n..(m + 1) * self.n;
         let t = self.t;
         let TaskScratch { h, turns, sin, cos, .. } = scratch;
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            let (h0, hm, cycles) = (&self.h0[r.clone()], &self.hm[r.clone()], &self.cycles[r]);
+            // SAFETY: `avx2` is set only when the CPU reports AVX2.
+            let done = unsafe { evolve_simd::evolve(h, h0, hm, cycles, t) };
+            for b in done..self.n {
+                h[b] = evolve_one(h0[b], hm[b], cycles[b], t);
+            }
+            return;
+        }
         for (o, &f) in turns.iter_mut().zip(&self.cycles[r.clone()]) {
             *o = reduce_turns(f * t);
         }

@@ -1,4 +1,5 @@
-//! The row pass's transpose (`cascade.rs`) in AVX2 registers: 4 x 4 blocks of complex values.
+//! The row pass's transpose (`cascade.rs`) in AVX2 registers: 4 x 4 blocks of complex values,
+//! a task's whole block of output rows per call.
 //!
 //! A complex f32 is 64 bits, so four of them fill a 256-bit register, and a 4 x 4 block transposes
 //! with four 64-bit unpacks and four 128-bit lane permutes (values are moved, not computed, so the
@@ -6,35 +7,54 @@
 
 use rustfft::num_complex::Complex32;
 
-/// Writes `block[z * n + a + i] = columns[i][z]` for z in `0..rows`, i in 0..4: four kx columns
-/// (each `rows` values, a multiple of 4) into four entries of each of `rows` output rows of length
-/// `n`.
+/// Writes `block[z * n + a] = src[slots[a] + z0 + z]` for every kx index a in 0..n and z in
+/// `0..rows`: the task's `rows` output rows (each n long) out of the column buffer `src`, whose
+/// slot of kx index a starts at `slots[a]`. Four kx at a time, in 4 x 4 blocks; the bounds are
+/// checked once per call, not per block.
 ///
 /// # Safety
 /// The CPU must have AVX2 (`fill_simd::available`).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-pub(super) unsafe fn transpose4(columns: [&[Complex32]; 4], block: &mut [Complex32], n: usize, a: usize) {
+pub(super) unsafe fn transpose_rows(
+    src: &[Complex32],
+    slots: &[usize],
+    z0: usize,
+    rows: usize,
+    block: &mut [Complex32],
+    n: usize,
+) {
     use std::arch::x86_64::*;
 
-    let rows = columns[0].len();
-    assert!(rows % 4 == 0 && columns.iter().all(|c| c.len() == rows) && a + 4 <= n && block.len() >= rows * n);
-    let [c0, c1, c2, c3] = columns;
-    for z in (0..rows).step_by(4) {
-        // SAFETY: z + 4 <= rows values of every column; rows (z .. z + 4) * n + a + 4 <= block.len().
+    assert!(rows % 4 == 0 && n % 4 == 0 && slots.len() == n && block.len() >= rows * n);
+    assert!(slots.iter().all(|&s| s + z0 + rows <= src.len()));
+    let out = block.as_mut_ptr().cast::<f64>();
+    let mut a = 0;
+    while a < n {
+        // SAFETY: slots[a..a + 4] + z0 + rows <= src.len() (checked above), and output rows
+        // (z .. z + 4) * n + a + 4 <= rows * n <= block.len().
         unsafe {
-            let ld = |c: &[Complex32]| _mm256_loadu_pd(c.as_ptr().add(z).cast());
-            let (p, q, r, s) = (ld(c0), ld(c1), ld(c2), ld(c3));
-            // One complex is one f64 here: output rows are n f64 apart.
-            // [p0 q0 | p2 q2], [p1 q1 | p3 q3], [r0 s0 | r2 s2], [r1 s1 | r3 s3].
-            let (t0, t1) = (_mm256_unpacklo_pd(p, q), _mm256_unpackhi_pd(p, q));
-            let (t2, t3) = (_mm256_unpacklo_pd(r, s), _mm256_unpackhi_pd(r, s));
-            let out = block.as_mut_ptr().add(z * n + a).cast::<f64>();
-            _mm256_storeu_pd(out, _mm256_permute2f128_pd::<0x20>(t0, t2));
-            _mm256_storeu_pd(out.add(n), _mm256_permute2f128_pd::<0x20>(t1, t3));
-            _mm256_storeu_pd(out.add(2 * n), _mm256_permute2f128_pd::<0x31>(t0, t2));
-            _mm256_storeu_pd(out.add(3 * n), _mm256_permute2f128_pd::<0x31>(t1, t3));
+            let c0 = src.as_ptr().add(slots[a] + z0).cast::<f64>();
+            let c1 = src.as_ptr().add(slots[a + 1] + z0).cast::<f64>();
+            let c2 = src.as_ptr().add(slots[a + 2] + z0).cast::<f64>();
+            let c3 = src.as_ptr().add(slots[a + 3] + z0).cast::<f64>();
+            let mut z = 0;
+            while z < rows {
+                let (p, q) = (_mm256_loadu_pd(c0.add(z)), _mm256_loadu_pd(c1.add(z)));
+                let (r, s) = (_mm256_loadu_pd(c2.add(z)), _mm256_loadu_pd(c3.add(z)));
+                // One complex is one f64 here: output rows are n f64 apart.
+                // [p0 q0 | p2 q2], [p1 q1 | p3 q3], [r0 s0 | r2 s2], [r1 s1 | r3 s3].
+                let (t0, t1) = (_mm256_unpacklo_pd(p, q), _mm256_unpackhi_pd(p, q));
+                let (t2, t3) = (_mm256_unpacklo_pd(r, s), _mm256_unpackhi_pd(r, s));
+                let o = out.add(z * n + a);
+                _mm256_storeu_pd(o, _mm256_permute2f128_pd::<0x20>(t0, t2));
+                _mm256_storeu_pd(o.add(n), _mm256_permute2f128_pd::<0x20>(t1, t3));
+                _mm256_storeu_pd(o.add(2 * n), _mm256_permute2f128_pd::<0x31>(t0, t2));
+                _mm256_storeu_pd(o.add(3 * n), _mm256_permute2f128_pd::<0x31>(t1, t3));
+                z += 4;
+            }
         }
+        a += 4;
     }
 }
 
@@ -47,16 +67,16 @@ mod tests {
         if !super::super::fill_simd::available() {
             return;
         }
-        let (n, rows, a) = (32, 16, 8);
-        let cols: Vec<Vec<Complex32>> =
-            (0..4).map(|i| (0..rows).map(|z| Complex32::new(i as f32, z as f32 + 0.5)).collect()).collect();
+        let (n, rows, z0, stride) = (32, 16, 16, 48);
+        // Slots in a shuffled order with a padded stride, as in the column buffers.
+        let slots: Vec<usize> = (0..n).map(|a| ((a * 7) % n) * stride).collect();
+        let src: Vec<Complex32> = (0..n * stride).map(|i| Complex32::new(i as f32, -(i as f32) - 0.5)).collect();
         let mut block = vec![Complex32::new(-1.0, -1.0); rows * n];
         // SAFETY: AVX2 checked above.
-        unsafe { transpose4([&cols[0], &cols[1], &cols[2], &cols[3]], &mut block, n, a) };
+        unsafe { transpose_rows(&src, &slots, z0, rows, &mut block, n) };
         for z in 0..rows {
-            for x in 0..n {
-                let want = if (a..a + 4).contains(&x) { cols[x - a][z] } else { Complex32::new(-1.0, -1.0) };
-                assert_eq!(block[z * n + x], want, "row {z} column {x}");
+            for a in 0..n {
+                assert_eq!(block[z * n + a], src[slots[a] + z0 + z], "row {z} column {a}");
             }
         }
     }
