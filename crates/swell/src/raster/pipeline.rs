@@ -103,27 +103,44 @@ pub fn draw_with<V, S>(
         .par_chunks_mut(row * BAND_ROWS as usize)
         .zip(target.depth.par_chunks_mut(row * BAND_ROWS as usize))
         .enumerate()
-        .for_each(|(band, (color, depth))| {
-            let y0 = band as u32 * BAND_ROWS;
-            let y1 = (y0 + BAND_ROWS).min(height) - 1;
-            for chunk in chunks {
-                for &t in &chunk.bins[band] {
-                    let tri = &chunk.triangles[t as usize];
-                    tri.scan((y0, y1), |c| {
-                        let i = (c.y - y0) as usize * row + c.x as usize;
-                        let z = tri.depth(c.linear);
-                        if z < depth[i] {
-                            depth[i] = z;
-                            let varying = tri.interpolate(tri.perspective_weights(c.linear));
-                            color[i] = shader(&Fragment { varying, primitive: tri.primitive, x: c.x, y: c.y });
-                        }
-                    });
+        .for_each(|(band, (color, depth))| raster_band(chunks, band, color, depth, row, height, shader));
+}
+
+/// Draws band `band` (rows `band * BAND_ROWS ..`, `color` and `depth` its pixels, `row` wide):
+/// every chunk's triangles binned to it, in submission order.
+// The three stages stay out of line so that profiles (perf, callgrind) name them.
+#[inline(never)]
+fn raster_band<V: Varying, S>(
+    chunks: &[Chunk<V>],
+    band: usize,
+    color: &mut [Vec3],
+    depth: &mut [f32],
+    row: usize,
+    height: u32,
+    shader: &S,
+) where
+    S: Fn(&Fragment<V>) -> Vec3 + Sync,
+{
+    let y0 = band as u32 * BAND_ROWS;
+    let y1 = (y0 + BAND_ROWS).min(height) - 1;
+    for chunk in chunks {
+        for &t in &chunk.bins[band] {
+            let tri = &chunk.triangles[t as usize];
+            tri.scan((y0, y1), |c| {
+                let i = (c.y - y0) as usize * row + c.x as usize;
+                let z = tri.depth(c.linear);
+                if z < depth[i] {
+                    depth[i] = z;
+                    let varying = tri.interpolate(tri.perspective_weights(c.linear));
+                    color[i] = shader(&Fragment { varying, primitive: tri.primitive, x: c.x, y: c.y });
                 }
-            }
-        });
+            });
+        }
+    }
 }
 
 /// Outcode and (for vertices inside every plane) window position of each vertex.
+#[inline(never)]
 fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[ClipVertex<V>], w: u32, h: u32) {
     out.resize(vertices.len(), (0, WindowVertex::default()));
     out.par_iter_mut().zip(vertices.par_iter()).with_min_len(4096).for_each(|(o, v)| {
@@ -132,6 +149,7 @@ fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[C
     });
 }
 
+#[inline(never)]
 fn setup_and_bin<V: Varying>(
     scratch: &mut DrawScratch<V>,
     vertices: &[ClipVertex<V>],

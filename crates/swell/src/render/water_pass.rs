@@ -33,6 +33,8 @@ pub struct Scratch {
 /// Sets `visible[v]` for every vertex of a triangle whose vertices' outcodes share no bit (it may
 /// cover a pixel), and clears it for the rest. Parallel over triangles; the stores only ever write
 /// `true` after the clear, so the result does not depend on their order or the thread count.
+// Out of line so that profiles name it.
+#[inline(never)]
 fn mark_visible_vertices(indices: &[u32], outcodes: &[u8], visible: &mut Vec<AtomicBool>) {
     visible.resize_with(outcodes.len(), AtomicBool::default);
     visible.par_iter_mut().for_each(|v| *v.get_mut() = false);
