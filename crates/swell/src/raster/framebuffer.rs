@@ -7,6 +7,9 @@ use rayon::prelude::*;
 
 use super::rgba8_encoder::{encode_channel, Rgba8Encoder};
 
+/// Rows per task of [`Framebuffer::fill_background`].
+const BACKGROUND_ROWS: usize = 8;
+
 /// A linear-RGB colour buffer with a depth buffer, top row first.
 #[derive(Clone, Debug)]
 pub struct Framebuffer {
@@ -90,16 +93,24 @@ impl Framebuffer {
         });
     }
 
-    /// Sets the colour of every pixel whose depth is still the far plane (1) to `background(x,
-    /// y)`, rows in parallel: drawing the background after the geometry shades only what shows.
+    /// Sets the colour of every pixel whose depth is still the far plane (1) to `row(y)(x)`, rows
+    /// in parallel: drawing the background after the geometry shades only what shows. `row(y)` is
+    /// called once per row, so what depends only on the row is computed once.
     // Out of line so that profiles name it (the sky pass).
     #[inline(never)]
-    pub fn fill_background(&mut self, background: impl Fn(u32, u32) -> Vec3 + Sync) {
+    pub fn fill_background<R>(&mut self, row: impl Fn(u32) -> R + Sync)
+    where
+        R: Fn(u32) -> Vec3,
+    {
         let w = self.width as usize;
-        self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().for_each(|(y, (row, depth))| {
-            for (x, (c, &d)) in row.iter_mut().zip(depth).enumerate() {
+        // A few rows per task: the background is usually a band (the sky above the horizon), and
+        // rayon's adaptive split would leave one thread most of it.
+        let rows = self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().with_max_len(BACKGROUND_ROWS);
+        rows.for_each(|(y, (colors, depth))| {
+            let background = row(y as u32);
+            for (x, (c, &d)) in colors.iter_mut().zip(depth).enumerate() {
                 if d >= 1.0 {
-                    *c = background(x as u32, y as u32);
+                    *c = background(x as u32);
                 }
             }
         });

@@ -23,6 +23,9 @@ const BAND_ROWS: u32 = 16;
 /// balance.
 const SETUP_CHUNK: usize = 8192;
 
+/// Vertices per projection task.
+const VERTEX_TASK: usize = 4096;
+
 /// Which triangles to skip.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Cull {
@@ -103,6 +106,10 @@ pub fn draw_with<V, S>(
         .par_chunks_mut(row * BAND_ROWS as usize)
         .zip(target.depth.par_chunks_mut(row * BAND_ROWS as usize))
         .enumerate()
+        // One band per task: bands differ in cost by orders of magnitude (many small triangles at
+        // the horizon, a few large ones in front, none in the sky), and rayon's adaptive split
+        // otherwise leaves one thread a long run of costly bands while the other waits.
+        .with_max_len(1)
         .for_each(|(band, (color, depth))| raster_band(chunks, band, color, depth, row, height, shader));
 }
 
@@ -143,10 +150,13 @@ fn raster_band<V: Varying, S>(
 #[inline(never)]
 fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[ClipVertex<V>], w: u32, h: u32) {
     out.resize(vertices.len(), (0, WindowVertex::default()));
-    out.par_iter_mut().zip(vertices.par_iter()).with_min_len(4096).for_each(|(o, v)| {
-        let code = outcode(v.position);
-        *o = (code, if code == 0 { to_window(v.position, w, h) } else { WindowVertex::default() });
-    });
+    // Tasks of a fixed size: vertices outside the view cost less, and they come in runs.
+    out.par_iter_mut().zip(vertices.par_iter()).with_min_len(VERTEX_TASK).with_max_len(VERTEX_TASK).for_each(
+        |(o, v)| {
+            let code = outcode(v.position);
+            *o = (code, if code == 0 { to_window(v.position, w, h) } else { WindowVertex::default() });
+        },
+    );
 }
 
 #[inline(never)]
@@ -162,7 +172,9 @@ fn setup_and_bin<V: Varying>(
     let n_chunks = indices.len().div_ceil(3 * SETUP_CHUNK);
     scratch.chunks.resize_with(n_chunks, || Chunk { triangles: Vec::new(), bins: Vec::new() });
     let window = &scratch.window;
-    scratch.chunks.par_iter_mut().zip(indices.par_chunks(3 * SETUP_CHUNK)).enumerate().for_each(|(c, (chunk, idx))| {
+    // One chunk per task, for the same balance as the bands: triangles outside the view come in runs.
+    let chunks = scratch.chunks.par_iter_mut().zip(indices.par_chunks(3 * SETUP_CHUNK)).enumerate().with_max_len(1);
+    chunks.for_each(|(c, (chunk, idx))| {
         chunk.triangles.clear();
         chunk.bins.resize_with(n_bands, Vec::new);
         chunk.bins.iter_mut().for_each(Vec::clear);

@@ -16,6 +16,9 @@ use crate::scene::TerrainBody;
 use crate::scene::WaterBody;
 use crate::shading::{shade_water, FlatBottom, NoBottom, ReflectionMap, Seabed, Shading, SurfaceVarying, WaterLook};
 
+/// Vertices per task of the Gouraud lighting.
+const SHADE_TASK: usize = 4096;
+
 /// Vertex buffers of the models that do not interpolate a colour, kept between frames.
 #[derive(Default)]
 pub struct Scratch {
@@ -109,7 +112,8 @@ pub fn draw(
             });
             mark_visible_vertices(&mesh.indices, &scratch.outcodes, &mut scratch.visible);
             let visible = &scratch.visible;
-            clip_vertices.par_iter_mut().enumerate().for_each(|(i, cv)| {
+            // Tasks of a fixed size: the lit vertices come in runs (the rows in view).
+            clip_vertices.par_iter_mut().enumerate().with_max_len(SHADE_TASK).for_each(|(i, cv)| {
                 if visible[i].load(Ordering::Relaxed) {
                     cv.varying = shade_water(env, &look, lobe, mesh.positions[i], mesh.normals[i], foam(i));
                 }
