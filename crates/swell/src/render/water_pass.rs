@@ -16,6 +16,9 @@ use crate::scene::TerrainBody;
 use crate::scene::WaterBody;
 use crate::shading::{shade_water, FlatBottom, NoBottom, ReflectionMap, Seabed, Shading, SurfaceVarying, WaterLook};
 
+/// Triangles per task of [`mark_visible_vertices`].
+const MARK_TASK: usize = 4096;
+
 /// Vertices per task of the Gouraud lighting.
 const SHADE_TASK: usize = 4096;
 
@@ -42,11 +45,14 @@ fn mark_visible_vertices(indices: &[u32], outcodes: &[u8], visible: &mut Vec<Ato
     visible.resize_with(outcodes.len(), AtomicBool::default);
     visible.par_iter_mut().for_each(|v| *v.get_mut() = false);
     let visible = &*visible;
-    indices.par_chunks_exact(3).for_each(|t| {
-        let (a, b, c) = (t[0] as usize, t[1] as usize, t[2] as usize);
-        if outcodes[a] & outcodes[b] & outcodes[c] == 0 {
-            for v in [a, b, c] {
-                visible[v].store(true, Ordering::Relaxed);
+    // Blocks of triangles per task, each a plain loop: per-triangle work is a few instructions.
+    indices.par_chunks(3 * MARK_TASK).for_each(|block| {
+        for t in block.chunks_exact(3) {
+            let (a, b, c) = (t[0] as usize, t[1] as usize, t[2] as usize);
+            if outcodes[a] & outcodes[b] & outcodes[c] == 0 {
+                for v in [a, b, c] {
+                    visible[v].store(true, Ordering::Relaxed);
+                }
             }
         }
     });
