@@ -150,13 +150,14 @@ fn raster_band<V: Varying, S>(
 #[inline(never)]
 fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[ClipVertex<V>], w: u32, h: u32) {
     out.resize(vertices.len(), (0, WindowVertex::default()));
-    // Tasks of a fixed size: vertices outside the view cost less, and they come in runs.
-    out.par_iter_mut().zip(vertices.par_iter()).with_min_len(VERTEX_TASK).with_max_len(VERTEX_TASK).for_each(
-        |(o, v)| {
+    // Blocks of a fixed size per task, each a plain loop: vertices outside the view cost less and
+    // come in runs, and the per-vertex work is only a few dozen instructions.
+    out.par_chunks_mut(VERTEX_TASK).zip(vertices.par_chunks(VERTEX_TASK)).for_each(|(out, vertices)| {
+        for (o, v) in out.iter_mut().zip(vertices) {
             let code = outcode(v.position);
             *o = (code, if code == 0 { to_window(v.position, w, h) } else { WindowVertex::default() });
-        },
-    );
+        }
+    });
 }
 
 #[inline(never)]
