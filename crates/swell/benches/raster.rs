@@ -1,6 +1,8 @@
 //! Rasterizer throughput: paper 001's largest case (a 513 x 513 height field, 524,288 triangles, at
 //! 800 x 800 with flat shading) on 1 and 2 threads, the `sea` preset at 1280 x 720 with its
-//! simulation, and the `valley-lake` preset's render (terrain reflected in the water).
+//! simulation, the `valley-lake` preset's render (terrain reflected in the water), and the
+//! `ocean` preset's whole viewer frame (FFT step, mesh, render and RGBA8 encoding) on 1 and 2
+//! threads.
 //!
 //! Each case runs twice: under `wall/` with criterion's wall-clock timer, and under `cpu/` with
 //! the CPU time of the whole process (summed over its threads, from Linux's
@@ -103,6 +105,33 @@ fn valley_lake<M: Measurement + 'static>(c: &mut Criterion<M>, prefix: &str) {
     group.finish();
 }
 
+/// The `ocean` preset's frame as the viewer pays it (issue 7): `World::update` (FFT step and
+/// mesh), `Renderer::render_size` at 1280 x 720 and the RGBA8 encoding, on 1 and 2 threads.
+/// `cpu/.../2_threads` against twice `wall/.../2_threads` shows the serial part on an idle machine.
+fn ocean<M: Measurement + 'static>(c: &mut Criterion<M>, prefix: &str) {
+    let mut group = c.benchmark_group(format!("{prefix}/ocean_1280x720"));
+    group.sample_size(20);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let mut world = World::new(preset("ocean").unwrap()).unwrap();
+        let r = world.scene.render;
+        let mut renderer = Renderer::new();
+        let mut rgba = Vec::new();
+        let mut t = 0.0;
+        group.bench_function(format!("{threads}_threads_frame"), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    t += 1.0 / 30.0;
+                    world.update(t).unwrap();
+                    renderer.render_size(&world, 1280, 720).encode_rgba8(r.exposure, r.gamma, &mut rgba);
+                    rgba[0]
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
 /// Process CPU time in nanoseconds: the sum over its threads of the first field of `schedstat`.
 fn process_cpu_ns() -> u64 {
     let mut total = 0;
@@ -171,12 +200,14 @@ fn wall(c: &mut Criterion<WallTime>) {
     terrain(c, "wall");
     sea(c, "wall");
     valley_lake(c, "wall");
+    ocean(c, "wall");
 }
 
 fn cpu(c: &mut Criterion<CpuTime>) {
     terrain(c, "cpu");
     sea(c, "cpu");
     valley_lake(c, "cpu");
+    ocean(c, "cpu");
 }
 
 criterion_group!(wall_benches, wall);

@@ -1,9 +1,14 @@
 //! Colour and depth buffers.
 
+use std::sync::{Arc, Mutex};
+
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::math::linear_to_srgb;
+use super::rgba8_encoder::{encode_channel, Rgba8Encoder};
+
+/// Rows per task of [`Framebuffer::fill_background`].
+const BACKGROUND_ROWS: usize = 8;
 
 /// A linear-RGB colour buffer with a depth buffer, top row first.
 #[derive(Clone, Debug)]
@@ -14,6 +19,40 @@ pub struct Framebuffer {
     pub color: Vec<Vec3>,
     /// Window-space depth per pixel in [0, 1] (0 = near plane), cleared to 1.
     pub depth: Vec<f32>,
+    /// The last [`Framebuffer::encode_rgba8`]'s table, reused while exposure and gamma stay.
+    encoder: EncoderCache,
+}
+
+/// The encoding table of the last (exposure, gamma), kept so that steady-state frames neither
+/// rebuild it (a serial step of about 8,000 curve evaluations) nor allocate. Behind a mutex
+/// because encoding takes `&self`; a clone starts empty.
+#[derive(Default)]
+struct EncoderCache(Mutex<Option<Arc<Rgba8Encoder>>>);
+
+impl EncoderCache {
+    /// The table for (`exposure`, `gamma`), built on first use or when they change; `None` when
+    /// [`Rgba8Encoder::new`] refuses them.
+    fn get(&self, exposure: f32, gamma: Option<f32>) -> Option<Arc<Rgba8Encoder>> {
+        // A poisoned lock only means a panic elsewhere mid-update; the slot is rebuilt below.
+        let mut slot = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(t) = slot.as_ref().filter(|t| t.encodes(exposure, gamma)) {
+            return Some(Arc::clone(t));
+        }
+        *slot = Rgba8Encoder::new(exposure, gamma).map(Arc::new);
+        slot.clone()
+    }
+}
+
+impl Clone for EncoderCache {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for EncoderCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("EncoderCache")
+    }
 }
 
 impl Framebuffer {
@@ -21,7 +60,7 @@ impl Framebuffer {
     /// ([`crate::scene::MAX_IMAGE_SIDE`]).
     pub fn new(width: u32, height: u32) -> Self {
         let n = width as usize * height as usize;
-        Self { width, height, color: vec![Vec3::ZERO; n], depth: vec![1.0; n] }
+        Self { width, height, color: vec![Vec3::ZERO; n], depth: vec![1.0; n], encoder: EncoderCache::default() }
     }
 
     /// Width in pixels.
@@ -54,14 +93,24 @@ impl Framebuffer {
         });
     }
 
-    /// Sets the colour of every pixel whose depth is still the far plane (1) to `background(x,
-    /// y)`, rows in parallel: drawing the background after the geometry shades only what shows.
-    pub fn fill_background(&mut self, background: impl Fn(u32, u32) -> Vec3 + Sync) {
+    /// Sets the colour of every pixel whose depth is still the far plane (1) to `row(y)(x)`, rows
+    /// in parallel: drawing the background after the geometry shades only what shows. `row(y)` is
+    /// called once per row, so what depends only on the row is computed once.
+    // Out of line so that profiles name it (the sky pass).
+    #[inline(never)]
+    pub fn fill_background<R>(&mut self, row: impl Fn(u32) -> R + Sync)
+    where
+        R: Fn(u32) -> Vec3,
+    {
         let w = self.width as usize;
-        self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().for_each(|(y, (row, depth))| {
-            for (x, (c, &d)) in row.iter_mut().zip(depth).enumerate() {
+        // A few rows per task: the background is usually a band (the sky above the horizon), and
+        // rayon's adaptive split would leave one thread most of it.
+        let rows = self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().with_max_len(BACKGROUND_ROWS);
+        rows.for_each(|(y, (colors, depth))| {
+            let background = row(y as u32);
+            for (x, (c, &d)) in colors.iter_mut().zip(depth).enumerate() {
                 if d >= 1.0 {
-                    *c = background(x as u32, y as u32);
+                    *c = background(x as u32);
                 }
             }
         });
@@ -71,21 +120,20 @@ impl Framebuffer {
     /// law `c^(1/gamma)` when `gamma` is given. `out` is resized to `4 * width * height`.
     pub fn encode_rgba8(&self, exposure: f32, gamma: Option<f32>, out: &mut Vec<u8>) {
         out.resize(self.color.len() * 4, 0);
-        let table = ByteThresholds::new(exposure, gamma);
-        let encode = |c: f32| match &table {
-            Some(t) => t.encode(c),
-            None => encode_channel(c, exposure, gamma),
-        };
-        out.par_chunks_mut(4 * self.width as usize).zip(self.color.par_chunks(self.width as usize)).for_each(
-            |(dst, src)| {
+        let w = self.width as usize;
+        if w == 0 {
+            return;
+        }
+        let table = self.encoder.get(exposure, gamma);
+        out.par_chunks_mut(4 * w).zip(self.color.par_chunks(w)).for_each(|(dst, src)| match &table {
+            Some(t) => t.encode_row(src, dst),
+            None => {
                 for (px, c) in dst.chunks_exact_mut(4).zip(src) {
-                    px[0] = encode(c.x);
-                    px[1] = encode(c.y);
-                    px[2] = encode(c.z);
-                    px[3] = 255;
+                    let e = |v: f32| encode_channel(v, exposure, gamma);
+                    px.copy_from_slice(&[e(c.x), e(c.y), e(c.z), 255]);
                 }
-            },
-        );
+            }
+        });
     }
 
     /// Makes `self` the box-filtered reduction of `src` by `factor` per axis: each pixel is the
@@ -118,99 +166,6 @@ impl Framebuffer {
     }
 }
 
-/// One linear channel to a byte: times `exposure`, the sRGB curve or `c^(1/gamma)`, rounded.
-fn encode_channel(c: f32, exposure: f32, gamma: Option<f32>) -> u8 {
-    let c = c * exposure;
-    let e = match gamma {
-        None => linear_to_srgb(c),
-        Some(g) => c.clamp(0.0, 1.0).powf(1.0 / g),
-    };
-    // NaN clamps to 0 here, so a bad sample can never reach a file as garbage.
-    (e * 255.0 + 0.5).clamp(0.0, 255.0) as u8
-}
-
-/// [`encode_channel`] without a `powf` per channel: the encoding is non-decreasing in the linear
-/// value, so it is fully described by the smallest linear value reaching each byte 1..=255,
-/// found once per frame by bisection over the f32 bit patterns (non-negative floats order as
-/// their bits). A channel is then encoded by counting thresholds at or below it.
-/// Callgrind: the encoding of a 1280 x 720 frame was 271 M instructions (three `powf` per pixel),
-/// more than half the `ocean` frame's rendering.
-///
-/// The count starts from a table indexed by the top 16 bits of the value (sign, exponent and 7
-/// mantissa bits: buckets 0.8 % wide), holding the count at the bucket's lower end; adjacent
-/// thresholds are about that far apart or more (sRGB: 0.85 % at the top byte, far more below), so a
-/// compare or two finishes it. A binary search over
-/// the 255 thresholds (8 unpredictable branches per channel) was 7 % of a viewer `ocean` frame.
-struct ByteThresholds {
-    /// `lower[k - 1]`: the smallest linear value encoded as k or more; NaN where none is.
-    lower: [f32; 255],
-    /// `start[b]`: how many thresholds are at or below `f32::from_bits(b << 16)`, for the
-    /// non-negative bit patterns (b < 0x8000).
-    start: Box<[u8; BUCKETS]>,
-}
-
-/// Buckets of [`ByteThresholds::start`]: every non-negative f32 bit pattern shifted right by 16.
-const BUCKETS: usize = 0x8000;
-
-impl ByteThresholds {
-    /// `None` when the encoding is not known to be non-decreasing (exposure not positive and
-    /// finite, gamma not positive and finite): the caller then encodes each channel directly.
-    fn new(exposure: f32, gamma: Option<f32>) -> Option<Self> {
-        let valid_gamma = gamma.is_none_or(|g| g.is_finite() && g > 0.0);
-        if !(exposure.is_finite() && exposure > 0.0 && valid_gamma) {
-            return None;
-        }
-        let f = |bits: u32| encode_channel(f32::from_bits(bits), exposure, gamma);
-        let top = f32::INFINITY.to_bits();
-        let mut lower = [f32::NAN; 255];
-        for (k, slot) in (1..=255u8).zip(lower.iter_mut()) {
-            if f(top) < k {
-                break;
-            }
-            // Smallest bit pattern in [0, top] whose encoding reaches k.
-            let (mut lo, mut hi) = (0u32, top);
-            while lo < hi {
-                let mid = lo + (hi - lo) / 2;
-                if f(mid) >= k {
-                    hi = mid;
-                } else {
-                    lo = mid + 1;
-                }
-            }
-            *slot = f32::from_bits(lo);
-        }
-        // Negative values and NaN encode to 0 (they clamp to 0 first), as does 0 itself.
-        if f(0) != 0 {
-            return None;
-        }
-        // One merge-like sweep: bucket starts and thresholds both increase.
-        let mut start = Box::new([0u8; BUCKETS]);
-        let mut k = 0;
-        for (b, slot) in start.iter_mut().enumerate() {
-            let c = f32::from_bits((b as u32) << 16);
-            while k < lower.len() && lower[k] <= c {
-                k += 1;
-            }
-            *slot = k as u8;
-        }
-        Some(Self { lower, start })
-    }
-
-    #[inline]
-    fn encode(&self, c: f32) -> u8 {
-        // Negative values, zero and NaN all encode to 0 (every threshold is positive).
-        if !(c > 0.0) {
-            return 0;
-        }
-        // Non-negative, so the index is below BUCKETS; NaN thresholds (none reachable) stop the count.
-        let mut k = self.start[(c.to_bits() >> 16) as usize] as usize;
-        while k < self.lower.len() && self.lower[k] <= c {
-            k += 1;
-        }
-        k as u8
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -229,23 +184,19 @@ mod tests {
     }
 
     #[test]
-    fn byte_thresholds_encode_exactly_like_the_direct_curve() {
-        for (exposure, gamma) in [(1.0, None), (1.7, None), (1.0, Some(1.0)), (0.6, Some(2.2))] {
-            let table = ByteThresholds::new(exposure, gamma).unwrap();
-            // Dense over the range where bytes change, plus the special values.
-            let mut values: Vec<f32> = (0..200_000).map(|i| i as f32 / 150_000.0).collect();
-            values.extend([-1.0, -0.0, 0.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 1e30, 1e-40]);
-            // Each threshold and its neighbours, where a bucket's start count must be finished exactly.
-            for t in table.lower.iter().filter(|t| t.is_finite()) {
-                values.extend([*t, f32::from_bits(t.to_bits() - 1), f32::from_bits(t.to_bits() + 1)]);
-            }
-            // Every bucket's lower end.
-            values.extend((0..BUCKETS as u32).map(|b| f32::from_bits(b << 16)).filter(|c| !c.is_nan()));
-            for c in values {
-                assert_eq!(table.encode(c), encode_channel(c, exposure, gamma), "c = {c}, {exposure} {gamma:?}");
+    fn encoding_follows_exposure_and_gamma_changes_and_falls_back_to_the_curve() {
+        let mut fb = Framebuffer::new(11, 3);
+        fb.color =
+            (0..33).map(|i| Vec3::new(i as f32 / 40.0, (i as f32 * 0.37).fract(), 1.0 / (1.0 + i as f32))).collect();
+        fb.color[5] = Vec3::new(f32::NAN, -1.0, f32::INFINITY);
+        let mut out = Vec::new();
+        // The cached table must follow each change; exposure 0 has no table (direct curve).
+        for (exposure, gamma) in [(1.0, None), (2.0, None), (2.0, Some(2.2)), (1.0, None), (0.0, None), (1.0, None)] {
+            fb.encode_rgba8(exposure, gamma, &mut out);
+            for (px, c) in out.chunks_exact(4).zip(&fb.color) {
+                let e = |v| encode_channel(v, exposure, gamma);
+                assert_eq!(px, [e(c.x), e(c.y), e(c.z), 255], "{c} at {exposure} {gamma:?}");
             }
         }
-        assert!(ByteThresholds::new(0.0, None).is_none());
-        assert!(ByteThresholds::new(1.0, Some(f32::NAN)).is_none());
     }
 }

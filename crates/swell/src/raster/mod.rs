@@ -6,7 +6,7 @@
 //! 1. [`clip`]: homogeneous clipping against the near and far planes and a guard band;
 //! 2. [`triangle`]: setup in 24.8 fixed point, edge functions with the top-left fill rule;
 //! 3. [`pipeline`]: setup in parallel, binning into horizontal bands, bands rasterized in parallel;
-//! 4. [`framebuffer`]: linear colour and depth, encoded to RGBA8 at the end;
+//! 4. [`framebuffer`]: linear colour and depth, encoded to RGBA8 at the end (`rgba8_encoder`);
 //! 5. [`line`]: depth-tested lines for overlays.
 //!
 //! Each pixel belongs to exactly one band and each band draws its triangles in submission order, so
@@ -17,6 +17,7 @@ mod framebuffer;
 pub mod line;
 mod pipeline;
 pub mod reference;
+mod rgba8_encoder;
 pub mod triangle;
 
 pub use framebuffer::Framebuffer;

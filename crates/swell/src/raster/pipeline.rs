@@ -23,6 +23,9 @@ const BAND_ROWS: u32 = 16;
 /// balance.
 const SETUP_CHUNK: usize = 8192;
 
+/// Vertices per projection task.
+const VERTEX_TASK: usize = 4096;
+
 /// Which triangles to skip.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Cull {
@@ -103,35 +106,61 @@ pub fn draw_with<V, S>(
         .par_chunks_mut(row * BAND_ROWS as usize)
         .zip(target.depth.par_chunks_mut(row * BAND_ROWS as usize))
         .enumerate()
-        .for_each(|(band, (color, depth))| {
-            let y0 = band as u32 * BAND_ROWS;
-            let y1 = (y0 + BAND_ROWS).min(height) - 1;
-            for chunk in chunks {
-                for &t in &chunk.bins[band] {
-                    let tri = &chunk.triangles[t as usize];
-                    tri.scan((y0, y1), |c| {
-                        let i = (c.y - y0) as usize * row + c.x as usize;
-                        let z = tri.depth(c.linear);
-                        if z < depth[i] {
-                            depth[i] = z;
-                            let varying = tri.interpolate(tri.perspective_weights(c.linear));
-                            color[i] = shader(&Fragment { varying, primitive: tri.primitive, x: c.x, y: c.y });
-                        }
-                    });
+        // One band per task: bands differ in cost by orders of magnitude (many small triangles at
+        // the horizon, a few large ones in front, none in the sky), and rayon's adaptive split
+        // otherwise leaves one thread a long run of costly bands while the other waits.
+        .with_max_len(1)
+        .for_each(|(band, (color, depth))| raster_band(chunks, band, color, depth, row, height, shader));
+}
+
+/// Draws band `band` (rows `band * BAND_ROWS ..`, `color` and `depth` its pixels, `row` wide):
+/// every chunk's triangles binned to it, in submission order.
+// The three stages stay out of line so that profiles (perf, callgrind) name them.
+#[inline(never)]
+fn raster_band<V: Varying, S>(
+    chunks: &[Chunk<V>],
+    band: usize,
+    color: &mut [Vec3],
+    depth: &mut [f32],
+    row: usize,
+    height: u32,
+    shader: &S,
+) where
+    S: Fn(&Fragment<V>) -> Vec3 + Sync,
+{
+    let y0 = band as u32 * BAND_ROWS;
+    let y1 = (y0 + BAND_ROWS).min(height) - 1;
+    for chunk in chunks {
+        for &t in &chunk.bins[band] {
+            let tri = &chunk.triangles[t as usize];
+            tri.scan((y0, y1), |c| {
+                let i = (c.y - y0) as usize * row + c.x as usize;
+                let z = tri.depth(c.linear);
+                if z < depth[i] {
+                    depth[i] = z;
+                    let varying = tri.interpolate(tri.perspective_weights(c.linear));
+                    color[i] = shader(&Fragment { varying, primitive: tri.primitive, x: c.x, y: c.y });
                 }
-            }
-        });
+            });
+        }
+    }
 }
 
 /// Outcode and (for vertices inside every plane) window position of each vertex.
+#[inline(never)]
 fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[ClipVertex<V>], w: u32, h: u32) {
     out.resize(vertices.len(), (0, WindowVertex::default()));
-    out.par_iter_mut().zip(vertices.par_iter()).with_min_len(4096).for_each(|(o, v)| {
-        let code = outcode(v.position);
-        *o = (code, if code == 0 { to_window(v.position, w, h) } else { WindowVertex::default() });
+    // Blocks of a fixed size per task, each a plain loop: vertices outside the view cost less and
+    // come in runs, and the per-vertex work is only a few dozen instructions.
+    out.par_chunks_mut(VERTEX_TASK).zip(vertices.par_chunks(VERTEX_TASK)).for_each(|(out, vertices)| {
+        for (o, v) in out.iter_mut().zip(vertices) {
+            let code = outcode(v.position);
+            *o = (code, if code == 0 { to_window(v.position, w, h) } else { WindowVertex::default() });
+        }
     });
 }
 
+#[inline(never)]
 fn setup_and_bin<V: Varying>(
     scratch: &mut DrawScratch<V>,
     vertices: &[ClipVertex<V>],
@@ -144,7 +173,9 @@ fn setup_and_bin<V: Varying>(
     let n_chunks = indices.len().div_ceil(3 * SETUP_CHUNK);
     scratch.chunks.resize_with(n_chunks, || Chunk { triangles: Vec::new(), bins: Vec::new() });
     let window = &scratch.window;
-    scratch.chunks.par_iter_mut().zip(indices.par_chunks(3 * SETUP_CHUNK)).enumerate().for_each(|(c, (chunk, idx))| {
+    // One chunk per task, for the same balance as the bands: triangles outside the view come in runs.
+    let chunks = scratch.chunks.par_iter_mut().zip(indices.par_chunks(3 * SETUP_CHUNK)).enumerate().with_max_len(1);
+    chunks.for_each(|(c, (chunk, idx))| {
         chunk.triangles.clear();
         chunk.bins.resize_with(n_bands, Vec::new);
         chunk.bins.iter_mut().for_each(Vec::clear);

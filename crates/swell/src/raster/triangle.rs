@@ -211,9 +211,11 @@ impl<V: Varying> SetupTriangle<V> {
         let (mut r1, sx1, sy1, b1) = edge(2, 0);
         let (mut r2, sx2, sy2, b2) = edge(0, 1);
         let inv = self.inv_area;
-        for py in y_from..=y_to {
+        // Half-open ranges: an inclusive range's iterator keeps an `exhausted` flag, one more
+        // compare and branch per pixel in the hottest loop.
+        for py in y_from..y_to + 1 {
             let (mut e0, mut e1, mut e2) = (r0, r1, r2);
-            for px in self.min_x..=self.max_x {
+            for px in self.min_x..self.max_x + 1 {
                 if (e0 | e1 | e2) >= 0 {
                     // Undo the bias before weighting; it only decides ties.
                     let linear = [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];

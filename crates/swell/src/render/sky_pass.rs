@@ -17,14 +17,17 @@ pub fn clear_depth(fb: &mut Framebuffer) {
 pub fn draw(fb: &mut Framebuffer, scene: &Scene, sun: Option<&SunDisc>) {
     let (width, height) = (fb.width(), fb.height());
     let rays = SkyRays::new(&scene.camera, width as f32 / height as f32);
-    fb.fill_background(|x, y| {
-        let ndc_x = 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
+    let sky = &scene.sky;
+    fb.fill_background(|y| {
         let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / height as f32;
-        let dir = rays.direction(ndc_x, ndc_y);
-        let sky = scene.sky.radiance(dir);
-        match sun {
-            Some(s) => sky + s.radiance(dir),
-            None => sky,
+        let row = rays.row(ndc_y);
+        move |x| {
+            let ndc_x = 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
+            let dir = row.direction(ndc_x);
+            match sun {
+                Some(s) => sky.radiance(dir) + s.radiance(dir),
+                None => sky.radiance(dir),
+            }
         }
     });
 }
@@ -47,8 +50,25 @@ impl SkyRays {
         Self { forward, right: right * tan_half * aspect, up: up * tan_half }
     }
 
-    /// Unit world direction of the ray through NDC (`ndc_x`, `ndc_y`), each in [-1, 1].
-    pub fn direction(&self, ndc_x: f32, ndc_y: f32) -> Vec3 {
-        (self.forward + self.right * ndc_x + self.up * ndc_y).normalize()
+    /// The rays of the image row at `ndc_y` in [-1, 1].
+    pub fn row(&self, ndc_y: f32) -> SkyRow {
+        SkyRow { forward: self.forward, right: self.right, up_y: self.up * ndc_y }
+    }
+}
+
+/// The view rays of one image row: [`SkyRays`] with the row's share computed once.
+pub(crate) struct SkyRow {
+    forward: Vec3,
+    right: Vec3,
+    /// The up vector scaled to the row.
+    up_y: Vec3,
+}
+
+impl SkyRow {
+    /// Unit world direction of the ray through NDC x `ndc_x` in [-1, 1] on this row.
+    #[inline]
+    pub fn direction(&self, ndc_x: f32) -> Vec3 {
+        // The same sum, in the same order, as computed per pixel before the row was factored out.
+        (self.forward + self.right * ndc_x + self.up_y).normalize()
     }
 }

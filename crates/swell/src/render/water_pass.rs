@@ -16,6 +16,12 @@ use crate::scene::TerrainBody;
 use crate::scene::WaterBody;
 use crate::shading::{shade_water, FlatBottom, NoBottom, ReflectionMap, Seabed, Shading, SurfaceVarying, WaterLook};
 
+/// Triangles per task of [`mark_visible_vertices`].
+const MARK_TASK: usize = 4096;
+
+/// Vertices per task of the Gouraud lighting.
+const SHADE_TASK: usize = 4096;
+
 /// Vertex buffers of the models that do not interpolate a colour, kept between frames.
 #[derive(Default)]
 pub struct Scratch {
@@ -33,15 +39,20 @@ pub struct Scratch {
 /// Sets `visible[v]` for every vertex of a triangle whose vertices' outcodes share no bit (it may
 /// cover a pixel), and clears it for the rest. Parallel over triangles; the stores only ever write
 /// `true` after the clear, so the result does not depend on their order or the thread count.
+// Out of line so that profiles name it.
+#[inline(never)]
 fn mark_visible_vertices(indices: &[u32], outcodes: &[u8], visible: &mut Vec<AtomicBool>) {
     visible.resize_with(outcodes.len(), AtomicBool::default);
     visible.par_iter_mut().for_each(|v| *v.get_mut() = false);
     let visible = &*visible;
-    indices.par_chunks_exact(3).for_each(|t| {
-        let (a, b, c) = (t[0] as usize, t[1] as usize, t[2] as usize);
-        if outcodes[a] & outcodes[b] & outcodes[c] == 0 {
-            for v in [a, b, c] {
-                visible[v].store(true, Ordering::Relaxed);
+    // Blocks of triangles per task, each a plain loop: per-triangle work is a few instructions.
+    indices.par_chunks(3 * MARK_TASK).for_each(|block| {
+        for t in block.chunks_exact(3) {
+            let (a, b, c) = (t[0] as usize, t[1] as usize, t[2] as usize);
+            if outcodes[a] & outcodes[b] & outcodes[c] == 0 {
+                for v in [a, b, c] {
+                    visible[v].store(true, Ordering::Relaxed);
+                }
             }
         }
     });
@@ -107,7 +118,8 @@ pub fn draw(
             });
             mark_visible_vertices(&mesh.indices, &scratch.outcodes, &mut scratch.visible);
             let visible = &scratch.visible;
-            clip_vertices.par_iter_mut().enumerate().for_each(|(i, cv)| {
+            // Tasks of a fixed size: the lit vertices come in runs (the rows in view).
+            clip_vertices.par_iter_mut().enumerate().with_max_len(SHADE_TASK).for_each(|(i, cv)| {
                 if visible[i].load(Ordering::Relaxed) {
                     cv.varying = shade_water(env, &look, lobe, mesh.positions[i], mesh.normals[i], foam(i));
                 }
