@@ -166,8 +166,9 @@ impl Worker {
     }
 }
 
-/// Makes `world` follow `scene` the way the editor's world does: rebuilt when the water or the
-/// terrain changed, otherwise only the scene (camera, lights, sky, render settings) swapped.
+/// Makes `world` follow `scene`: rebuilt when the water or the terrain changed
+/// ([`World::needs_rebuild_for`]), otherwise only the scene (camera, lights, sky, render settings)
+/// swapped. A scene that fails to build leaves the previous world in place.
 fn follow(world: &mut Option<World>, scene: Scene) -> Result<()> {
     match world {
         Some(w) if !w.needs_rebuild_for(&scene) => w.scene = scene,

@@ -25,10 +25,22 @@ const PLANES: [Vec4; 6] = [
     Vec4::new(0.0, -1.0, 0.0, GUARD_BAND), // y <= G w
 ];
 
-/// Outcode: bit i set when the point is outside plane i.
-pub fn outcode(p: Vec4) -> u8 {
+/// The view volume's planes in the order of [`PLANES`]: the same near and far planes, and the
+/// sides at |x|, |y| = w (no guard band).
+const VIEW_PLANES: [Vec4; 6] = [
+    Vec4::new(0.0, 0.0, 1.0, 1.0),
+    Vec4::new(0.0, 0.0, -1.0, 1.0),
+    Vec4::new(1.0, 0.0, 0.0, 1.0),
+    Vec4::new(-1.0, 0.0, 0.0, 1.0),
+    Vec4::new(0.0, 1.0, 0.0, 1.0),
+    Vec4::new(0.0, -1.0, 0.0, 1.0),
+];
+
+/// Bit i set when `p` is strictly outside `planes[i]`.
+#[inline]
+fn outcode_against(p: Vec4, planes: &[Vec4; 6]) -> u8 {
     let mut code = 0;
-    for (i, plane) in PLANES.iter().enumerate() {
+    for (i, plane) in planes.iter().enumerate() {
         if plane.dot(p) < 0.0 {
             code |= 1 << i;
         }
@@ -36,19 +48,17 @@ pub fn outcode(p: Vec4) -> u8 {
     code
 }
 
+/// Outcode: bit i set when the point is outside plane i.
+pub fn outcode(p: Vec4) -> u8 {
+    outcode_against(p, &PLANES)
+}
+
 /// Outcode against the view volume itself (|x|, |y| <= w, -w <= z <= w; no guard band): bit i set
 /// when the point is strictly outside plane i. A triangle whose three codes share a bit lies wholly
 /// on the outside of that plane, so none of it is visible and it covers no pixel; per-vertex work
 /// (lighting) that only such triangles use can be skipped without changing the image.
 pub fn view_outcode(p: Vec4) -> u8 {
-    let mut code = 0;
-    let planes = [p.z + p.w, p.w - p.z, p.x + p.w, p.w - p.x, p.y + p.w, p.w - p.y];
-    for (i, d) in planes.into_iter().enumerate() {
-        if d < 0.0 {
-            code |= 1 << i;
-        }
-    }
-    code
+    outcode_against(p, &VIEW_PLANES)
 }
 
 /// A convex polygon of at most [`MAX_CLIPPED`] vertices.
