@@ -25,25 +25,44 @@
 //!
 //! Eight real fields are packed two per complex transform (`A + iB`: the real and imaginary parts
 //! of the inverse transform are A and B, because both spectra are Hermitian): four complex N x N
-//! inverse FFTs per step. Each 2-D transform is N row FFTs over the kz index (rows in parallel), a
-//! blocked transpose fused with N row FFTs over the kx index. The four pairs go through each pass
-//! together (one parallel pass of column transforms, one of row transforms), which costs a column
-//! buffer per pair (4 x N (N + 16) complex values). Buffers are allocated in `new`.
+//! inverse transforms per step. Each is N transforms over kz (one per kx) followed by N over kx
+//! (one per z). The four pairs' spectra are, for a row of fixed kx and with `g = λ h/|k|`:
+//!
+//! ```text
+//! (h, Dx)    = h - kx g          (Dz, hx)   = i kz g - kx h
+//! (hz, Dxx)  = i kz h - kx² (i g) (Dzz, Dxz) = -kz² g - kx (i kz g)
+//! ```
+//!
+//! so each is a sum of five **bases** `h, g, i kz g, i kz h, -kz² g` times factors that depend on
+//! kx alone (`i` included), and a factor constant along a row commutes with the transform over
+//! kz. So only the five bases are transformed over kz, and only for the stored rows kx >= 0: each
+//! base's transform over kz at -kx is the conjugate of its transform at kx
+//! (`B(-kx, z) = conj(B(kx, z))`, because `h(-k) = conj(h(k))` and each base's multiplier is even
+//! or odd in kz to match), so the row pass builds the pairs' rows kx and -kx from the same five.
+//! That is 5 transforms of length N per stored row where transforming each pair's rows kx and -kx
+//! would take 8: 6.5 N transforms per step instead of 8 N, and above all a column buffer of
+//! 2.5 N² values instead of 4 N² (21 MB instead of 34 MB at 1024²).
 //!
 //! ## Two passes over memory per step
 //! The step is two parallel passes (two meetings of the threads), each fusing what used to be
 //! passes of their own, because at 1024² the buffers do not fit in cache and passes over memory,
 //! not arithmetic, set the time:
-//! - **column pass**: a task owns stored rows m and their mirror rows N - m (adjacent slots of the
-//!   column buffers); it evolves `h(k, t)` of row m into an L1 scratch row, fills both rows of the
-//!   four packed spectra from it (`λ/|k|` comes from a table, so no square root or division), and
-//!   transforms them over kz. `h(k, t)` is never stored.
-//! - **row pass**: a task owns 16 output rows; it transposes them out of the column buffers, four kx
-//!   at a time, transforms them over kx and, for the first cascade, updates their foam from the
-//!   Jacobian terms it has just written.
+//! - **column pass**: a task owns 8 stored rows m in [0, N/2); it evolves `h(k, t)` of row m into
+//!   an L1 scratch row, writes the row's five bases from it into the column buffer (`λ/|k|` comes
+//!   from a table, so no square root or division) and transforms them there over kz. `h(k, t)` is
+//!   never stored.
+//! - **row pass**: a task owns 16 output rows; it gathers them out of the column buffer into its
+//!   thread's block, combining the bases into the four pairs at kx and at -kx (`x - f y`,
+//!   conjugated at -kx, see [`gather_rows`]), transforms them over kx there and copies them to
+//!   [`Cascade::fields`], and, for the first cascade, updates their foam from the Jacobian terms
+//!   it has just written.
+//!
+//! Scratch buffers belong to threads, not tasks, so the gathered block stays in the thread's L2
+//! from one task to the next (a block per task would be one more 34 MB buffer to stream through
+//! at 1024²).
 
 use std::f64::consts::TAU;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
@@ -58,21 +77,34 @@ use crate::math::{reduce_turns, sin_cos_turns};
 use crate::spectrum::DirectionalSpectrum;
 use crate::water::foam_coverage;
 
-/// Rows handled by one parallel task of the row pass; each task owns one [`TaskScratch`].
+/// Rows handled by one parallel task of the row pass.
 const ROWS_PER_TASK: usize = 16;
 
-/// Stored rows (each with its mirror row, so as many rows as [`ROWS_PER_TASK`]) handled by one
-/// task of the column pass.
-const PAIRS_PER_TASK: usize = ROWS_PER_TASK / 2;
-
-/// Padding (complex values) after each row of the column-pass buffer. Its row length is otherwise
-/// a power of two, so the transpose's reads down a column would all fall in the same cache set;
-/// 16 values (128 bytes) move successive rows to different sets and keep rows aligned.
+/// Padding (complex values) after each slot of the column buffer. Its slot length is otherwise
+/// a power of two, so the row pass's reads down a column would all fall in the same cache set;
+/// 16 values (128 bytes) move successive slots to different sets and keep slots aligned.
 const WORK_ROW_PADDING: usize = 16;
+
+/// Stored rows handled by one task of the column pass: with their mirror rows, as many rows as
+/// [`ROWS_PER_TASK`], so both passes have N / 16 tasks.
+const STORED_ROWS_PER_TASK: usize = ROWS_PER_TASK / 2;
+
+/// Padding (complex values) after each row of a thread's gathered block: rows N apart (a
+/// multiple of 4 KB) would all fall in the same L1 set, more rows than it has ways.
+pub(super) const BLOCK_PADDING: usize = 8;
+
+/// Bases transformed over kz per stored row (module doc), in this order in the column buffer:
+/// `h`, `g = λ h/|k|`, `i kz g`, `i kz h`, `-kz² g`.
+pub(super) const BASES: usize = 5;
+
+/// For each pair (`PAIR_*` order), the bases (x, y) it combines, as `x - f y` (pair
+/// [`PAIR_HZ_DXX`]: `x - f (i y)`), f from [`pair_factor`].
+pub(super) const PAIR_BASES: [(usize, usize); 4] = [(0, 1), (2, 0), (3, 1), (4, 2)];
 
 /// Index of each packed field pair in [`Cascade::fields`]: (real part, imaginary part).
 pub(super) const PAIR_H_DX: usize = 0;
 /// (Dz, hx).
+#[cfg_attr(not(test), allow(dead_code))]
 pub(super) const PAIR_DZ_HX: usize = 1;
 /// (hz, Dxx).
 pub(super) const PAIR_HZ_DXX: usize = 2;
@@ -98,32 +130,55 @@ pub(super) struct Cascade {
     lambda_over_k: Vec<f32>,
     /// Time (s) of the last [`Cascade::column_pass`].
     time: f64,
-    /// Column pass output of each field pair, one slot (row `n + WORK_ROW_PADDING` long) per kx
-    /// index, slots in the order kx index 0, N/2, 1, N-1, 2, N-2, ... so that a task of the column
-    /// pass owns a contiguous chunk holding rows m and N - m together.
-    work: [Vec<Complex32>; 4],
-    /// Offset in `work` of the slot of each kx index.
-    slot_offsets: Vec<usize>,
+    /// Column pass output: the [`BASES`] bases of each stored row transformed over kz, laid out
+    /// by [`WorkLayout`].
+    work: Vec<Complex32>,
+    layout: WorkLayout,
     /// The four packed field pairs, `[z][x]`: sample (i, j) sits at local (i L/N, j L/N).
     pub fields: [Vec<Complex32>; 4],
     /// kz (rad/m) of each column index.
     wavenumbers: Vec<f32>,
     fft: Arc<dyn Fft<f32>>,
-    scratch: Vec<TaskScratch>,
+    /// One [`TaskScratch`] per thread of the pool (grown when a pool with more threads steps
+    /// the sea), so a thread's buffers stay in its caches from task to task.
+    scratch: Vec<Mutex<TaskScratch>>,
     /// Whether the CPU has AVX2, checked once in `new`.
     avx2: bool,
 }
 
-/// Buffers of one parallel task, allocated in `new`.
+/// Buffers of the thread running a task of either pass.
 struct TaskScratch {
     /// rustfft's scratch.
     fft: Vec<Complex32>,
     /// `h(k, t)` of the stored row being transformed (n values).
     h: Vec<Complex32>,
+    /// The row pass's four pairs' gathered rows, pair p's row z at `(p R + z) (n + BLOCK_PADDING)`,
+    /// transformed here, then copied into the fields.
+    block: Vec<Complex32>,
     /// The row's phases in turns, reduced to [-1/2, 1/2], and their sines and cosines (n each).
     turns: Vec<f32>,
     sin: Vec<f32>,
     cos: Vec<f32>,
+}
+
+impl TaskScratch {
+    fn new(n: usize, fft: &dyn Fft<f32>) -> Self {
+        Self {
+            fft: vec![Complex32::default(); fft.get_inplace_scratch_len()],
+            h: vec![Complex32::default(); n],
+            turns: vec![0.0; n],
+            sin: vec![0.0; n],
+            cos: vec![0.0; n],
+            block: vec![Complex32::default(); 4 * ROWS_PER_TASK * (n + BLOCK_PADDING)],
+        }
+    }
+}
+
+/// The scratch of the calling thread of the pool (shared, and locked in turn, if the pool has
+/// more threads than `pool` has buffers).
+fn thread_scratch(pool: &[Mutex<TaskScratch>]) -> MutexGuard<'_, TaskScratch> {
+    let i = rayon::current_thread_index().unwrap_or(0) % pool.len();
+    pool[i].lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// The foam field's rows, handed to [`Cascade::row_pass`] so the foam update runs fused with it.
@@ -243,17 +298,8 @@ impl Cascade {
             variance += v;
         }
         let fft = FftPlanner::new().plan_fft_inverse(n);
-        // Both passes have n / ROWS_PER_TASK tasks (one for n = 16).
-        let tasks = n / ROWS_PER_TASK.min(n);
-        let scratch = (0..tasks)
-            .map(|_| TaskScratch {
-                fft: vec![Complex32::default(); fft.get_inplace_scratch_len()],
-                h: vec![Complex32::default(); n],
-                turns: vec![0.0; n],
-                sin: vec![0.0; n],
-                cos: vec![0.0; n],
-            })
-            .collect();
+        let scratch =
+            (0..rayon::current_num_threads()).map(|_| Mutex::new(TaskScratch::new(n, fft.as_ref()))).collect();
         let wavenumbers: Vec<f32> = (0..n).map(|i| signed_index(i, n) as f32 * dk as f32).collect();
         let lambda = s.choppiness;
         let lambda_over_k = (0..half * n)
@@ -267,18 +313,6 @@ impl Cascade {
                 }
             })
             .collect();
-        let stride = n + WORK_ROW_PADDING;
-        let slot_offsets = (0..n)
-            .map(|a| {
-                let slot = match a {
-                    0 => 0,
-                    _ if a == half => 1,
-                    _ if a < half => 2 * a,
-                    _ => 2 * (n - a) + 1,
-                };
-                slot * stride
-            })
-            .collect();
         let zero = || vec![Complex32::default(); n * n];
         Self {
             n,
@@ -289,9 +323,9 @@ impl Cascade {
             cycles,
             lambda_over_k,
             time: f64::NAN,
-            work: std::array::from_fn(|_| vec![Complex32::default(); n * (n + WORK_ROW_PADDING)]),
+            work: vec![Complex32::default(); WorkLayout::new(n).len()],
+            layout: WorkLayout::new(n),
             fields: [zero(), zero(), zero(), zero()],
-            slot_offsets,
             wavenumbers,
             fft,
             scratch,
@@ -308,14 +342,13 @@ impl Cascade {
         self.variance *= factor * factor;
     }
 
-    /// Pass 1, for time `t` (s): evolves `h(k, t)` and fills and transforms the packed spectra of
-    /// the four field pairs over kz, into [`Cascade::work`]. One task owns the rows kx and -kx of
-    /// the same stored row, so each `h(k, t)` is computed once, used for both, and never stored:
-    /// the evolution costs no pass over memory of its own.
+    /// Pass 1, for time `t` (s): evolves `h(k, t)` of each stored row and transforms the row's
+    /// five bases over kz, into [`Cascade::work`]. Each `h(k, t)` is computed once, used for all
+    /// five, and never stored: the evolution costs no pass over memory of its own.
     pub fn column_pass(&mut self, t: f64) {
         let n = self.n;
-        let stride = n + WORK_ROW_PADDING;
-        let pairs = PAIRS_PER_TASK.min(n / 2);
+        self.fit_scratch_to_pool();
+        let layout = self.layout;
         let spec = Spectrum {
             n,
             t,
@@ -326,90 +359,81 @@ impl Cascade {
             kk: &self.wavenumbers,
             avx2: self.avx2,
         };
-        let fft = &self.fft;
-        let [w0, w1, w2, w3] = &mut self.work;
-        // Each task's chunk is `pairs` pairs of slots: rows (m, n - m) of every pair's buffer.
-        let chunk = 2 * pairs * stride;
-        w0.par_chunks_mut(chunk)
-            .zip(w1.par_chunks_mut(chunk))
-            .zip(w2.par_chunks_mut(chunk))
-            .zip(w3.par_chunks_mut(chunk))
-            .zip(self.scratch.par_iter_mut())
-            .enumerate()
-            .for_each(|(task, ((((b0, b1), b2), b3), scratch))| {
-                for p in 0..pairs {
-                    let m = task * pairs + p;
-                    spec.evolve_row(m, scratch);
-                    let TaskScratch { fft: fft_scratch, h, .. } = &mut *scratch;
-                    for side in 0..2 {
-                        if m == 0 && side == 1 {
-                            // Slot 1 is the Nyquist row kx = N/2: empty, zero since `new`, never written.
-                            continue;
-                        }
-                        let at = (2 * p + side) * stride;
-                        let r = at..at + n;
-                        let out = [&mut b0[r.clone()], &mut b1[r.clone()], &mut b2[r.clone()], &mut b3[r.clone()]];
-                        if side == 0 {
-                            spec.fill_row(m, h, out);
-                        } else {
-                            spec.fill_mirror_row(m, h, out);
-                        }
-                        for b in [&mut *b0, &mut *b1, &mut *b2, &mut *b3] {
-                            fft.process_with_scratch(&mut b[r.clone()], fft_scratch);
-                        }
+        let (fft, pool) = (&self.fft, &self.scratch[..]);
+        let per_task = STORED_ROWS_PER_TASK;
+        // The Nyquist row's slots, after the stored rows', are left alone.
+        self.work[..layout.slot(n / 2, 0, 0)].par_chunks_mut(per_task * BASES * layout.stride).enumerate().for_each(
+            |(task, chunk)| {
+                let mut scratch = thread_scratch(pool);
+                for (i, slots) in chunk.chunks_exact_mut(BASES * layout.stride).enumerate() {
+                    let m = task * per_task + i;
+                    spec.evolve_row(m, &mut scratch);
+                    let mut split = slots.chunks_exact_mut(layout.stride).map(|slot| &mut slot[..n]);
+                    spec.fill_bases(m, &scratch.h, std::array::from_fn(|_| split.next().expect("BASES slots")));
+                    for slot in slots.chunks_exact_mut(layout.stride) {
+                        fft.process_with_scratch(&mut slot[..n], &mut scratch.fft);
                     }
                 }
-            });
+            },
+        );
         self.time = t;
     }
 
-    /// Pass 2: transposes `[kx][z]` to `[z][kx]` block by block and transforms each row over kx,
-    /// for the four pairs, into [`Cascade::fields`]; with `foam`, updates the foam of the rows
-    /// just transformed while they are still in cache (the Jacobian needs only its own sample).
+    /// Grows the per-thread scratch to the current pool's thread count (allocates only when a
+    /// larger pool than before steps the sea).
+    fn fit_scratch_to_pool(&mut self) {
+        let threads = rayon::current_num_threads();
+        while self.scratch.len() < threads {
+            self.scratch.push(Mutex::new(TaskScratch::new(self.n, self.fft.as_ref())));
+        }
+    }
+
+    /// Pass 2: gathers `[kx][z]` into `[z][kx]` for a task's rows, combining the bases into the
+    /// four pairs, and transforms each row over kx, into [`Cascade::fields`]; with `foam`, updates
+    /// the foam of the rows just transformed while they are still in cache (the Jacobian needs only
+    /// its own sample).
     pub fn row_pass(&mut self, foam: Option<FoamRows>) {
         let n = self.n;
         let rows = ROWS_PER_TASK.min(n);
-        let (work, fft, slots, avx2) = (&self.work, &self.fft, &self.slot_offsets[..], self.avx2);
+        let (work, layout, fft, kx, avx2) =
+            (&self.work[..], self.layout, &self.fft, &self.wavenumbers[..=n / 2], self.avx2);
         let [f0, f1, f2, f3] = &mut self.fields;
         let chunk = rows * n;
         let tasks = f0
             .par_chunks_mut(chunk)
             .zip(f1.par_chunks_mut(chunk))
             .zip(f2.par_chunks_mut(chunk))
-            .zip(f3.par_chunks_mut(chunk))
-            .zip(self.scratch.par_iter_mut());
-        let body = |task: usize, out: [&mut [Complex32]; 4], scratch: &mut TaskScratch| {
-            let z0 = task * rows;
-            for (block, src) in out.into_iter().zip(work) {
-                // Four kx at a time: each slot's `rows` values are contiguous (one or two cache
-                // lines), and each output row gets one 32-byte store per four kx; the task's
-                // `rows` output lines stay in L1. (N >= 16, so N is a multiple of 4.)
-                #[cfg(target_arch = "x86_64")]
-                if avx2 {
-                    // SAFETY: `avx2` is set only when the CPU reports AVX2.
-                    unsafe { transpose_simd::transpose_rows(src, slots, z0, rows, block, n) };
-                    fft.process_with_scratch(block, &mut scratch.fft);
-                    continue;
-                }
-                for a in (0..n).step_by(4) {
-                    let column = |i: usize| &src[slots[a + i] + z0..slots[a + i] + z0 + rows];
-                    let (c0, c1, c2, c3) = (column(0), column(1), column(2), column(3));
-                    for ((((row, &v0), &v1), &v2), &v3) in block.chunks_exact_mut(n).zip(c0).zip(c1).zip(c2).zip(c3) {
-                        row[a..a + 4].copy_from_slice(&[v0, v1, v2, v3]);
-                    }
-                }
-                fft.process_with_scratch(block, &mut scratch.fft);
+            .zip(f3.par_chunks_mut(chunk));
+        let pool = &self.scratch[..];
+        let body = |task: usize, out: [&mut [Complex32]; 4]| {
+            let mut scratch = thread_scratch(pool);
+            let TaskScratch { block, fft: fft_scratch, .. } = &mut *scratch;
+            let mut gathered = false;
+            #[cfg(target_arch = "x86_64")]
+            if avx2 {
+                // SAFETY: `avx2` is set only when the CPU reports AVX2.
+                unsafe { transpose_simd::gather_rows(work, &layout, kx, task, block) };
+                gathered = true;
+            }
+            if !gathered {
+                gather_rows(work, &layout, kx, task, block);
+            }
+            let gathered_rows = block.chunks_exact_mut(n + BLOCK_PADDING);
+            for (row, field) in gathered_rows.zip(out.into_iter().flat_map(|f| f.chunks_exact_mut(n))) {
+                // In place in the thread's (cached) block, then one sequential copy: the fields'
+                // lines are written whole and in order, which the out-of-place transform's
+                // scattered last stage does not do.
+                fft.process_with_scratch(&mut row[..n], fft_scratch);
+                field.copy_from_slice(&row[..n]);
             }
         };
         match foam {
-            None => tasks.enumerate().for_each(|(task, ((((o0, o1), o2), o3), scratch))| {
-                body(task, [o0, o1, o2, o3], scratch);
+            None => tasks.enumerate().for_each(|(task, (((o0, o1), o2), o3))| {
+                body(task, [o0, o1, o2, o3]);
             }),
-            Some(FoamRows { values, decay, threshold }) => tasks
-                .zip(values.par_chunks_mut(chunk))
-                .enumerate()
-                .for_each(|(task, (((((o0, o1), o2), o3), scratch), foam))| {
-                    body(task, [&mut *o0, &mut *o1, &mut *o2, &mut *o3], scratch);
+            Some(FoamRows { values, decay, threshold }) => {
+                tasks.zip(values.par_chunks_mut(chunk)).enumerate().for_each(|(task, ((((o0, o1), o2), o3), foam))| {
+                    body(task, [&mut *o0, &mut *o1, &mut *o2, &mut *o3]);
                     let written = [&*o0, &*o1, &*o2, &*o3];
                     let (dxx, jac) = (written[PAIR_HZ_DXX], written[PAIR_DZZ_DXZ]);
                     // Foam follows the Jacobian of the rows this task has just written.
@@ -423,7 +447,8 @@ impl Cascade {
                     for ((v, dxx), dzz_dxz) in foam.iter_mut().zip(dxx).zip(jac) {
                         *v = foam_coverage(jacobian(dxx.im, dzz_dxz.re, dzz_dxz.im), threshold).max(*v * decay);
                     }
-                }),
+                })
+            }
         }
     }
 
@@ -517,66 +542,124 @@ impl Spectrum<'_> {
         }
     }
 
-    /// Row kx = m of the four packed spectra, from that row's `h(k, t)`.
+    /// The five bases of stored row m (kx index m < N/2), from that row's `h(k, t)`.
     #[inline(always)]
-    fn fill_row(&self, m: usize, h: &[Complex32], out: [&mut [Complex32]; 4]) {
+    fn fill_bases(&self, m: usize, h: &[Complex32], out: [&mut [Complex32]; BASES]) {
         let n = self.n;
         let l = &self.lambda_over_k[m * n..(m + 1) * n];
-        let kx = self.kk[m];
-        let [o0, o1, o2, o3] = out;
-        let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
         let (h, kk) = (&h[..n], &self.kk[..n]);
+        let [o0, o1, o2, o3, o4] = out;
+        let mut out = [&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n], &mut o4[..n]];
         let mut start = 0;
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
+            let [o0, o1, o2, o3, o4] = &mut out;
             // SAFETY: `avx2` is set only when the CPU reports AVX2.
-            start = unsafe { fill_simd::fill([o0, o1, o2, o3], h, kx, kk, l, false) };
+            start = unsafe { fill_simd::fill([o0, o1, o2, o3, o4], h, kk, l) };
         }
         for b in start..n {
-            write_multiplied([o0, o1, o2, o3], b, h[b], kx, kk[b], l[b]);
-        }
-    }
-
-    /// Row kx = -m (index N - m) of the four packed spectra, from row m's `h(k, t)`:
-    /// `h(-kx, kz) = conj(h(kx, -kz))`, and |k| is the same, so is `λ/k`.
-    #[inline(always)]
-    fn fill_mirror_row(&self, m: usize, h: &[Complex32], out: [&mut [Complex32]; 4]) {
-        let n = self.n;
-        let l = &self.lambda_over_k[m * n..(m + 1) * n];
-        let kx = -self.kk[m];
-        let [o0, o1, o2, o3] = out;
-        let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
-        let (h, kk) = (&h[..n], &self.kk[..n]);
-        write_multiplied([o0, o1, o2, o3], 0, h[0].conj(), kx, kk[0], l[0]);
-        let mut start = 1;
-        #[cfg(target_arch = "x86_64")]
-        if self.avx2 {
-            // SAFETY: as in `fill_row`.
-            start = unsafe { fill_simd::fill([o0, o1, o2, o3], h, kx, kk, l, true) };
-        }
-        for b in start..n {
-            write_multiplied([o0, o1, o2, o3], b, h[n - b].conj(), kx, kk[b], l[b]);
+            write_bases(&mut out, b, h[b], kk[b], l[b]);
         }
     }
 }
 
-/// Writes entry b of the four pairs' packed spectra: each pair's spectral multiplier at (kx, kz)
-/// times h, with `l = λ/|k|` (0 at k = 0).
-///
-/// With `A + iB` packing the multipliers are (h, Dx): `1 + i (i λ kx/k)`; (Dz, hx):
-/// `i λ kz/k + i (i kx)`; (hz, Dxx): `i kz + i (-λ kx²/k)`; (Dzz, Dxz): `-λ kz²/k + i (-λ kx kz/k)`,
-/// written out so that their zero parts cost nothing.
+/// Writes entry b of the five bases from `h = h(k, t)`, the column's kz and `l = λ/|k|` (0 at
+/// k = 0): `h`, `g = l h`, `i kz g`, `i kz h`, `i kz (i kz g) = -kz² g`.
 ///
 /// The column pass uses it for the entries `fill_simd::fill` leaves (all of them without AVX2),
-/// which computes the same values four entries at a time.
+/// which computes the same values, by the same operations, four entries at a time.
 #[inline(always)]
-pub(super) fn write_multiplied(out: [&mut [Complex32]; 4], b: usize, h: Complex32, kx: f32, kz: f32, l: f32) {
-    let s0 = 1.0 - l * kx;
-    out[PAIR_H_DX][b] = Complex32::new(h.re * s0, h.im * s0);
-    let (p, q) = (-kx, l * kz);
-    out[PAIR_DZ_HX][b] = Complex32::new(h.re * p - h.im * q, h.re * q + h.im * p);
-    let r = kz - l * kx * kx;
-    out[PAIR_HZ_DXX][b] = Complex32::new(-h.im * r, h.re * r);
-    let (u, v) = (-l * kz * kz, -l * kx * kz);
-    out[PAIR_DZZ_DXZ][b] = Complex32::new(h.re * u - h.im * v, h.re * v + h.im * u);
+pub(super) fn write_bases(out: &mut [&mut [Complex32]; BASES], b: usize, h: Complex32, kz: f32, l: f32) {
+    let g = Complex32::new(h.re * l, h.im * l);
+    let c = i_times(kz, g);
+    out[0][b] = h;
+    out[1][b] = g;
+    out[2][b] = c;
+    out[3][b] = i_times(kz, h);
+    out[4][b] = i_times(kz, c);
+}
+
+/// `i k v` for a real k.
+#[inline(always)]
+pub(super) fn i_times(k: f32, v: Complex32) -> Complex32 {
+    Complex32::new(-(v.im * k), v.re * k)
+}
+
+/// The factor f of pair p (see [`PAIR_BASES`]) in the row of wavenumber kx (rad/m) of a stored row
+/// m, or, with `mirror`, in its mirror row -kx, where the pair is `conj(x - f y)` of the stored
+/// row's bases (for a row constant c, the mirror row's pair is `conj(conj(c(-kx)) B)`).
+#[inline(always)]
+pub(super) fn pair_factor(p: usize, kx: f32, mirror: bool) -> f32 {
+    let f = if p == PAIR_HZ_DXX { kx * kx } else { kx };
+    if mirror {
+        -f
+    } else {
+        f
+    }
+}
+
+/// Where the column pass puts each base value: one slot of `stride = N + WORK_ROW_PADDING`
+/// values per stored row m and base j, at `(m BASES + j) stride`, so a task of the column pass
+/// owns a contiguous chunk and transforms its bases in place. The Nyquist row m = N/2 is empty;
+/// its slots, after the stored rows', stay zero, so the row pass reads kx = ±N/2 like any other.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct WorkLayout {
+    /// Slot length (complex values).
+    pub stride: usize,
+}
+
+impl WorkLayout {
+    /// R: output rows per row-pass task.
+    pub const ROWS: usize = ROWS_PER_TASK;
+
+    /// The layout for grid side n, a power of two >= 16 (`FFT_GRID_RANGE`), so R divides N and the
+    /// column pass's stored rows per task divide N/2.
+    pub fn new(n: usize) -> Self {
+        assert!(n.is_power_of_two() && n >= Self::ROWS, "FFT grid {n}");
+        Self { stride: n + WORK_ROW_PADDING }
+    }
+
+    /// Length of the column buffer: N/2 + 1 rows of slots.
+    pub fn len(&self) -> usize {
+        let n = self.stride - WORK_ROW_PADDING;
+        self.slot(n / 2 + 1, 0, 0)
+    }
+
+    /// Offset of base j of stored row m (in [0, N/2]) at the first output row of row-pass task c.
+    #[inline(always)]
+    pub fn slot(&self, m: usize, j: usize, c: usize) -> usize {
+        (m * BASES + j) * self.stride + c * Self::ROWS
+    }
+}
+
+/// Writes the output rows of row-pass task c of the four pairs into `block` (pair p's row z,
+/// column kx index a at `(p R + z) (n + BLOCK_PADDING) + a`) from the column buffer `work`, kx
+/// (rad/m) of stored row m at `kx[m]`, m in [0, N/2]: column m < N/2 is `x - f y` of row m's
+/// bases, column N - m (m >= 1) is its conjugate with the mirror factor.
+///
+/// `transpose_simd::gather_rows` computes the same values by the same operations in 4 x 4 blocks.
+pub(super) fn gather_rows(work: &[Complex32], layout: &WorkLayout, kx: &[f32], c: usize, block: &mut [Complex32]) {
+    let (half, rows) = (kx.len() - 1, WorkLayout::ROWS);
+    let n = 2 * half;
+    let stride = n + BLOCK_PADDING;
+    let base = |m: usize, j: usize| &work[layout.slot(m, j, c)..][..rows];
+    for (p, block) in block.chunks_exact_mut(rows * stride).enumerate() {
+        let (x, y) = PAIR_BASES[p];
+        let term = |v: Complex32, f: f32| if p == PAIR_HZ_DXX { i_times(f, v) } else { v * f };
+        for m in 0..=half {
+            let (xs, ys) = (base(m, x), base(m, y));
+            if m < half {
+                let f = pair_factor(p, kx[m], false);
+                for z in 0..rows {
+                    block[z * stride + m] = xs[z] - term(ys[z], f);
+                }
+            }
+            if m > 0 {
+                let f = pair_factor(p, kx[m], true);
+                for z in 0..rows {
+                    block[z * stride + n - m] = (xs[z] - term(ys[z], f)).conj();
+                }
+            }
+        }
+    }
 }

@@ -1,6 +1,6 @@
 //! Checks of the FFT ocean against its oracle and against oceanography.
 
-use super::cascade::{PAIR_DZZ_DXZ, PAIR_HZ_DXX};
+use super::cascade::{PAIR_DZZ_DXZ, PAIR_DZ_HX, PAIR_HZ_DXX};
 use super::*;
 use crate::spectrum::{u19_5_from_u10, Spreading, G};
 
@@ -193,15 +193,13 @@ fn crests_travel_downwind() {
         let p = FftOceanParams { wind_direction_deg: dir, spreading: Spreading::Cos2, ..params(64, 200.0) };
         let mut o = ocean(&p);
         let h0 = heights(&o);
-        let hx: Vec<f32> = o.cascades[0].fields[PAIR_DZ_HX_FOR_TESTS].iter().map(|c| c.im).collect();
+        let hx: Vec<f32> = o.cascades[0].fields[PAIR_DZ_HX].iter().map(|c| c.im).collect();
         o.advance(0.05).unwrap();
         // For h = A cos(kx - wt) travelling +x, dh/dt dh/dx = -A² k w sin² < 0.
         let corr: f64 = heights(&o).iter().zip(&h0).zip(&hx).map(|((a, b), s)| (a - b) * f64::from(*s)).sum();
         assert!(corr * sign > 0.0, "wind towards {dir} deg: correlation {corr}");
     }
 }
-
-const PAIR_DZ_HX_FOR_TESTS: usize = 1;
 
 #[test]
 fn the_sea_loops_after_its_period() {
@@ -251,6 +249,22 @@ fn one_and_two_threads_give_identical_seas_and_meshes() {
         })
     };
     assert!(run(1) == run(2));
+}
+
+#[test]
+fn an_ocean_built_in_one_pool_and_stepped_in_a_larger_one_gives_the_same_sea() {
+    // The scratch buffers belong to the threads of the pool that steps the sea, so a larger pool
+    // than the one `new` ran in grows them; a smaller one shares them.
+    let p = params(64, 100.0);
+    let pool = |threads| rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let mut o = pool(1).install(|| ocean(&p));
+    let step = |o: &mut FftOcean, threads, t| {
+        pool(threads).install(|| o.advance(t).unwrap());
+        o.cascades[0].fields.clone()
+    };
+    let (a, b, c) = (step(&mut o, 3, 1.5), step(&mut o, 1, 2.0), step(&mut o, 3, 1.5));
+    let mut fresh = ocean(&p);
+    assert!(a == step(&mut fresh, 2, 1.5) && b == step(&mut fresh, 2, 2.0) && a == c);
 }
 
 #[test]
