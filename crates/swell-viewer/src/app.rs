@@ -12,7 +12,7 @@ use swell::{Error, Result};
 
 use crate::camera_control::CameraRig;
 use crate::clock::Clock;
-use crate::editor::SceneEditor;
+use crate::editor::{FrameFailure, SceneEditor};
 use crate::frame_stats::FrameStats;
 use crate::live_view::{FrameKey, LiveView};
 use crate::panels::files::{FileMessage, FileRequest};
@@ -351,10 +351,10 @@ impl ViewerApp {
                 self.editor.frame_shown(revision);
             }
             Some((revision, Err(e))) => {
-                // A commit that does not build is undone and shown as a refusal in the panel;
-                // otherwise a stateful model went unstable: stop the clock so the error stays
-                // readable.
-                if !self.editor.frame_failed(revision, &e) {
+                // A commit that does not build is undone and shown as a refusal in the panel, and
+                // a failure of an older revision is left to the current one's frame; otherwise a
+                // stateful model went unstable: stop the clock so the error stays readable.
+                if self.editor.frame_failed(revision, &e) == FrameFailure::Unrecoverable {
                     self.clock.playing = false;
                     self.run_error = Some(e.to_string());
                 }

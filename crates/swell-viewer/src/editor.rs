@@ -20,6 +20,17 @@ use std::path::Path;
 use swell::scene::{Camera, Scene, World};
 use swell::{Error, Result};
 
+/// What [`SceneEditor::frame_failed`] made of a failed frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameFailure {
+    /// The failure was about an older revision than the current one: ignored.
+    Stale,
+    /// The current commit could not be shown and was undone; the error is in the panel.
+    Refused,
+    /// The scene already shown failed (a model went unstable): the caller reports the error.
+    Unrecoverable,
+}
+
 /// Draft, committed and last shown scene; see the [module documentation](self).
 pub struct SceneEditor {
     /// What the panel shows and edits. May be invalid; see [`SceneEditor::error`].
@@ -84,21 +95,28 @@ impl SceneEditor {
         }
     }
 
-    /// The view failed to build or step the scene of `revision` with `error`. If that is the
-    /// current scene and differs from the last one shown, the commit is undone as a refusal:
-    /// the last shown scene comes back (with a new revision), the draft keeps what was typed,
-    /// and the error is kept for the panel. Returns whether it was undone; otherwise (the shown
-    /// scene itself failed, e.g. a spring mesh went unstable later on) there is nothing to go
-    /// back to and the caller reports the error.
-    pub fn frame_failed(&mut self, revision: u64, error: &Error) -> bool {
-        if revision != self.revision || self.scene == self.shown {
-            return false;
+    /// The view failed to build or step the scene of `revision` with `error`.
+    ///
+    /// - An older revision than the current one: [`FrameFailure::Stale`], nothing changes. The
+    ///   current revision's frame answers for itself (fails again, or builds, after a camera drag
+    ///   or a further edit).
+    /// - The current scene, differing from the last one shown: the commit is undone as a
+    ///   refusal ([`FrameFailure::Refused`]): the last shown scene comes back (with a new
+    ///   revision), the draft keeps what was typed, and the error is kept for the panel.
+    /// - The shown scene itself (e.g. a spring mesh that went unstable later on): there is
+    ///   nothing to go back to, [`FrameFailure::Unrecoverable`], and the caller reports it.
+    pub fn frame_failed(&mut self, revision: u64, error: &Error) -> FrameFailure {
+        if revision != self.revision {
+            return FrameFailure::Stale;
+        }
+        if self.scene == self.shown {
+            return FrameFailure::Unrecoverable;
         }
         self.scene = self.shown.clone();
         self.error = Some(error.to_string());
         self.revision += 1;
         self.shown_revision = self.revision;
-        true
+        FrameFailure::Refused
     }
 
     /// A click at world (x, z) wants to drop a dent on the water. True, with a new revision so
@@ -254,14 +272,18 @@ mod tests {
         assert_eq!(e.revision(), 1);
         let err = World::new(e.scene().clone()).err().expect("the texture file is missing");
         // A late answer about an older revision changes nothing.
-        assert!(!e.frame_failed(0, &err));
-        assert!(e.frame_failed(1, &err));
+        let committed = e.scene().clone();
+        assert_eq!(e.frame_failed(0, &err), FrameFailure::Stale);
+        assert_eq!((e.scene(), e.revision(), e.error()), (&committed, 1, None), "a stale failure changes nothing");
+        assert_eq!(e.frame_failed(1, &err), FrameFailure::Refused);
         assert_eq!(e.scene(), &good);
         assert_eq!(e.revision(), 2, "a new revision, so the view follows the restored scene");
         assert_eq!(e.error(), Some(err.to_string().as_str()));
         assert!(e.draft.water.as_ref().unwrap().material.texture.is_some(), "the draft keeps what was typed");
         // The shown scene failing (a model going unstable later) has nothing to go back to.
-        assert!(!e.frame_failed(2, &err));
+        assert_eq!(e.frame_failed(2, &err), FrameFailure::Unrecoverable);
+        // Nor does a late answer about a revision before it.
+        assert_eq!(e.frame_failed(1, &err), FrameFailure::Stale);
         // Once a frame of a commit is shown, that commit is the fallback.
         e.draft = good.clone();
         e.draft.render.exposure = 1.5;
@@ -269,7 +291,7 @@ mod tests {
         e.frame_shown(3);
         set_first_amplitude(&mut e.draft, 0.7);
         e.apply().unwrap();
-        assert!(e.frame_failed(4, &err));
+        assert_eq!(e.frame_failed(4, &err), FrameFailure::Refused);
         assert_eq!(e.scene().render.exposure, 1.5);
         assert_eq!(first_amplitude(e.scene()), first_amplitude(&good));
     }
