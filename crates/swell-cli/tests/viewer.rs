@@ -5,6 +5,8 @@
 //! Without them the tests print why and pass, unless the environment variable `CI` is set: CI
 //! installs them, so there a missing tool is a failure.
 
+use std::io::Read;
+use std::os::unix::net::UnixStream;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -98,7 +100,9 @@ fn start_xvfb(tools: &[&str]) -> Option<Xvfb> {
             if let Ok(Some(_)) = x.child.try_wait() {
                 break; // display taken after all: try the next one
             }
-            if socket.exists() {
+            // Connect, not just look: a socket file left by an earlier server on this display
+            // exists before ours listens, and a viewer started then cannot open the display.
+            if UnixStream::connect(&socket).is_ok() {
                 return Some(x);
             }
             std::thread::sleep(Duration::from_millis(100));
@@ -202,7 +206,7 @@ fn view_difference(a: &RgbaImage, b: &RgbaImage) -> f64 {
 /// Starts `swell view --preset PRESET` and waits until its window is mapped and at least
 /// `min_blue` of the view's lower half is water-blue; returns the process and the window id.
 fn open_viewer(d: &str, dir: &Path, preset: &str, min_blue: f64) -> (Child, String) {
-    let child =
+    let mut child =
         swell(d).args(["view", "--preset", preset]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     // Wait until the window is mapped and has drawn water.
     let deadline = Instant::now() + STARTUP;
@@ -218,6 +222,12 @@ fn open_viewer(d: &str, dir: &Path, preset: &str, min_blue: f64) -> (Child, Stri
             if b > min_blue {
                 break id.clone();
             }
+        }
+        // A viewer that exited will not show a window: say why now instead of at the deadline.
+        if let Ok(Some(status)) = child.try_wait() {
+            let mut err = String::new();
+            child.stderr.take().map(|mut e| e.read_to_string(&mut err));
+            panic!("the viewer exited before showing water ({status}): {err}");
         }
         assert!(
             Instant::now() < deadline,

@@ -86,8 +86,8 @@ fn timed_step(ocean: &mut FftOcean, mesh: &mut SurfaceMesh, k: u32) -> Result<St
 /// Stage names of the `ocean` experiment, in series order.
 const STAGES: [&str; 5] = [
     "simulation (evolve + FFTs + foam)",
-    "evolve h(k, t), spectra, FFTs over kz (column pass)",
-    "FFTs over kx, transposes, foam (row pass)",
+    "evolve h(k, t), bases, FFTs over kz (column pass)",
+    "FFTs over kx, gathering the bases into pairs, foam (row pass)",
     "foam alone (0: fused into the row pass)",
     "displaced mesh (positions, normals, foam)",
 ];
@@ -155,8 +155,9 @@ pub fn ocean_experiment(ctx: &Context) -> Result<Report> {
                 .into(),
             "Each stage's time is measured inside the same steps (its own clock), so the stages of one row \
              come from the same runs; the spread is over steps. Since session 3 the step is two fused passes: \
-             `evolve_ms` times the column pass (evolution, spectra, transforms over kz), `fft_ms` the row pass \
-             (transposes, transforms over kx, Jacobian and foam), and `foam_ms` is 0."
+             `evolve_ms` times the column pass (evolution, the five bases, transforms over kz), `fft_ms` the row \
+             pass (gathering the bases into the packed pairs, transforms over kx, Jacobian and foam), and \
+             `foam_ms` is 0."
                 .into(),
         ],
         x_label: "grid".into(),

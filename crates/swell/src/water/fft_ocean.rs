@@ -56,11 +56,11 @@ const CASCADE_HANDOVER: f64 = 0.5;
 /// the evolution is timed with the column transforms it feeds, and foam with the row transforms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct StageTimes {
-    /// Column pass: evolving `h(k, t)` from `h0` (phases), filling the eight fields' packed
-    /// spectra and their transforms over kz.
+    /// Column pass: evolving `h(k, t)` from `h0` (phases), writing the five bases the eight
+    /// fields are built from and their transforms over kz.
     pub evolve_ms: f64,
-    /// Row pass: transposes and transforms over kx of the eight fields, with the Jacobian and foam
-    /// of the first cascade fused in.
+    /// Row pass: gathering the bases into the eight fields' packed pairs (a transpose), their
+    /// transforms over kx, with the Jacobian and foam of the first cascade fused in.
     pub fft_ms: f64,
     /// Foam on its own: 0 since foam is fused into the row pass (kept so the JSON keeps its keys).
     pub foam_ms: f64,
@@ -185,7 +185,8 @@ impl FftOcean {
         self.stage_times
     }
 
-    /// Synthesises every field for time `t` (s); no allocation.
+    /// Synthesises every field for time `t` (s); no allocation, except the per-thread scratch at
+    /// the first step and when a larger thread pool than before runs it.
     fn step(&mut self, t: f64) {
         let t0 = Instant::now();
         for c in &mut self.cascades {

@@ -52,8 +52,8 @@
 //!   from a table, so no square root or division) and transforms them there over kz. `h(k, t)` is
 //!   never stored.
 //! - **row pass**: a task owns 16 output rows; it gathers them out of the column buffer into its
-//!   thread's block, combining the bases into the four pairs at kx and at -kx (`x - f y`,
-//!   conjugated at -kx, see [`gather_rows`]), transforms them over kx there and copies them to
+//!   thread's block, combining the bases into the four pairs at kx and at -kx (`x - f y`, or
+//!   `x - f (i y)` for (hz, Dxx), conjugated at -kx, see [`gather_rows`]), transforms them over kx there and copies them to
 //!   [`Cascade::fields`], and, for the first cascade, updates their foam from the Jacobian terms
 //!   it has just written.
 //!
@@ -83,14 +83,14 @@ const ROWS_PER_TASK: usize = 16;
 /// Padding (complex values) after each slot of the column buffer. Its slot length is otherwise
 /// a power of two, so the row pass's reads down a column would all fall in the same cache set;
 /// 16 values (128 bytes) move successive slots to different sets and keep slots aligned.
-const WORK_ROW_PADDING: usize = 16;
+pub(super) const WORK_ROW_PADDING: usize = 16;
 
 /// Stored rows handled by one task of the column pass: with their mirror rows, as many rows as
 /// [`ROWS_PER_TASK`], so both passes have N / 16 tasks.
 const STORED_ROWS_PER_TASK: usize = ROWS_PER_TASK / 2;
 
 /// Padding (complex values) after each row of a thread's gathered block: rows N apart (a
-/// multiple of 4 KB) would all fall in the same L1 set, more rows than it has ways.
+/// multiple of 4 KB from N = 512) would fall in the same L1 set, more rows than it has ways.
 pub(super) const BLOCK_PADDING: usize = 8;
 
 /// Bases transformed over kz per stored row (module doc), in this order in the column buffer:
@@ -136,18 +136,19 @@ pub(super) struct Cascade {
     layout: WorkLayout,
     /// The four packed field pairs, `[z][x]`: sample (i, j) sits at local (i L/N, j L/N).
     pub fields: [Vec<Complex32>; 4],
-    /// kz (rad/m) of each column index.
+    /// kx or kz (rad/m) of each FFT index (the same table for both).
     wavenumbers: Vec<f32>,
     fft: Arc<dyn Fft<f32>>,
-    /// One [`TaskScratch`] per thread of the pool (grown when a pool with more threads steps
-    /// the sea), so a thread's buffers stay in its caches from task to task.
-    scratch: Vec<Mutex<TaskScratch>>,
+    /// One [`ThreadScratch`] per thread of the largest pool that has stepped the sea (allocated by
+    /// the first step, grown by a step in a larger pool), so a thread's buffers stay in its caches
+    /// from task to task.
+    scratch: Vec<Mutex<ThreadScratch>>,
     /// Whether the CPU has AVX2, checked once in `new`.
     avx2: bool,
 }
 
-/// Buffers of the thread running a task of either pass.
-struct TaskScratch {
+/// Buffers of one thread of the pool, used by every task of either pass that the thread runs.
+struct ThreadScratch {
     /// rustfft's scratch.
     fft: Vec<Complex32>,
     /// `h(k, t)` of the stored row being transformed (n values).
@@ -161,7 +162,7 @@ struct TaskScratch {
     cos: Vec<f32>,
 }
 
-impl TaskScratch {
+impl ThreadScratch {
     fn new(n: usize, fft: &dyn Fft<f32>) -> Self {
         Self {
             fft: vec![Complex32::default(); fft.get_inplace_scratch_len()],
@@ -174,11 +175,12 @@ impl TaskScratch {
     }
 }
 
-/// The scratch of the calling thread of the pool (shared, and locked in turn, if the pool has
-/// more threads than `pool` has buffers).
-fn thread_scratch(pool: &[Mutex<TaskScratch>]) -> MutexGuard<'_, TaskScratch> {
-    let i = rayon::current_thread_index().unwrap_or(0) % pool.len();
-    pool[i].lock().unwrap_or_else(PoisonError::into_inner)
+/// The calling thread's buffers, out of one per thread of the pool (see
+/// [`Cascade::fit_scratch_to_pool`]). The lock is never contended then; it keeps the code safe if a
+/// pass ever runs with more threads than buffers (they would take turns).
+fn thread_scratch(buffers: &[Mutex<ThreadScratch>]) -> MutexGuard<'_, ThreadScratch> {
+    let i = rayon::current_thread_index().unwrap_or(0) % buffers.len();
+    buffers[i].lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// The foam field's rows, handed to [`Cascade::row_pass`] so the foam update runs fused with it.
@@ -298,8 +300,6 @@ impl Cascade {
             variance += v;
         }
         let fft = FftPlanner::new().plan_fft_inverse(n);
-        let scratch =
-            (0..rayon::current_num_threads()).map(|_| Mutex::new(TaskScratch::new(n, fft.as_ref()))).collect();
         let wavenumbers: Vec<f32> = (0..n).map(|i| signed_index(i, n) as f32 * dk as f32).collect();
         let lambda = s.choppiness;
         let lambda_over_k = (0..half * n)
@@ -328,7 +328,8 @@ impl Cascade {
             fields: [zero(), zero(), zero(), zero()],
             wavenumbers,
             fft,
-            scratch,
+            // Allocated by the first step, for the pool that runs it (`fit_scratch_to_pool`).
+            scratch: Vec::new(),
             avx2: fill_simd::available(),
         }
     }
@@ -359,12 +360,12 @@ impl Cascade {
             kk: &self.wavenumbers,
             avx2: self.avx2,
         };
-        let (fft, pool) = (&self.fft, &self.scratch[..]);
+        let (fft, buffers) = (&self.fft, &self.scratch[..]);
         let per_task = STORED_ROWS_PER_TASK;
         // The Nyquist row's slots, after the stored rows', are left alone.
         self.work[..layout.slot(n / 2, 0, 0)].par_chunks_mut(per_task * BASES * layout.stride).enumerate().for_each(
             |(task, chunk)| {
-                let mut scratch = thread_scratch(pool);
+                let mut scratch = thread_scratch(buffers);
                 for (i, slots) in chunk.chunks_exact_mut(BASES * layout.stride).enumerate() {
                     let m = task * per_task + i;
                     spec.evolve_row(m, &mut scratch);
@@ -379,12 +380,12 @@ impl Cascade {
         self.time = t;
     }
 
-    /// Grows the per-thread scratch to the current pool's thread count (allocates only when a
-    /// larger pool than before steps the sea).
+    /// Grows the per-thread scratch to the current pool's thread count: allocates at the first
+    /// step and when a larger pool than before steps the sea, never otherwise.
     fn fit_scratch_to_pool(&mut self) {
         let threads = rayon::current_num_threads();
         while self.scratch.len() < threads {
-            self.scratch.push(Mutex::new(TaskScratch::new(self.n, self.fft.as_ref())));
+            self.scratch.push(Mutex::new(ThreadScratch::new(self.n, self.fft.as_ref())));
         }
     }
 
@@ -394,7 +395,7 @@ impl Cascade {
     /// its own sample).
     pub fn row_pass(&mut self, foam: Option<FoamRows>) {
         let n = self.n;
-        let rows = ROWS_PER_TASK.min(n);
+        let rows = WorkLayout::ROWS;
         let (work, layout, fft, kx, avx2) =
             (&self.work[..], self.layout, &self.fft, &self.wavenumbers[..=n / 2], self.avx2);
         let [f0, f1, f2, f3] = &mut self.fields;
@@ -404,10 +405,10 @@ impl Cascade {
             .zip(f1.par_chunks_mut(chunk))
             .zip(f2.par_chunks_mut(chunk))
             .zip(f3.par_chunks_mut(chunk));
-        let pool = &self.scratch[..];
+        let buffers = &self.scratch[..];
         let body = |task: usize, out: [&mut [Complex32]; 4]| {
-            let mut scratch = thread_scratch(pool);
-            let TaskScratch { block, fft: fft_scratch, .. } = &mut *scratch;
+            let mut scratch = thread_scratch(buffers);
+            let ThreadScratch { block, fft: fft_scratch, .. } = &mut *scratch;
             let mut gathered = false;
             #[cfg(target_arch = "x86_64")]
             if avx2 {
@@ -459,6 +460,12 @@ impl Cascade {
             let (a, b) = (idx / n, idx % n);
             (signed_index(a, n), signed_index(b, n), self.h0[idx], self.h0_mirror[idx], self.cycles[idx])
         })
+    }
+
+    /// Per-thread scratch buffers allocated so far.
+    #[cfg(test)]
+    pub(super) fn scratch_buffers(&self) -> usize {
+        self.scratch.len()
     }
 
     /// `h(k, t)` of the last [`Cascade::column_pass`] at wave-vector integers (nx, nz), any sign,
@@ -517,10 +524,10 @@ impl Spectrum<'_> {
     /// them: the phases in f64 turns reduced to f32, their sines and cosines, and the sum of the
     /// two rotated amplitudes. Same arithmetic per value as a single loop would do.
     #[inline(always)]
-    fn evolve_row(&self, m: usize, scratch: &mut TaskScratch) {
+    fn evolve_row(&self, m: usize, scratch: &mut ThreadScratch) {
         let r = m * self.n..(m + 1) * self.n;
         let t = self.t;
-        let TaskScratch { h, turns, sin, cos, .. } = scratch;
+        let ThreadScratch { h, turns, sin, cos, .. } = scratch;
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
             let (h0, hm, cycles) = (&self.h0[r.clone()], &self.hm[r.clone()], &self.cycles[r]);

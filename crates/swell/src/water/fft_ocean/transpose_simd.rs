@@ -33,7 +33,8 @@ pub(super) unsafe fn gather_rows(
     let (half, rows) = (kx.len() - 1, WorkLayout::ROWS);
     let n = 2 * half;
     let stride = n + BLOCK_PADDING;
-    assert!(rows % 4 == 0 && half % 4 == 0 && block.len() >= 4 * rows * stride);
+    assert!(rows % 4 == 0 && half % 4 == 0 && (c + 1) * rows <= n && block.len() >= 4 * rows * stride);
+    assert!(layout.stride == n + super::cascade::WORK_ROW_PADDING, "layout of another grid");
     let o = block.as_mut_ptr().cast::<f64>();
     let w = work.as_ptr().cast::<f32>();
     let neg_re = neg_re();
@@ -70,7 +71,7 @@ pub(super) unsafe fn gather_rows(
 ///
 /// # Safety
 /// The CPU must have AVX2; the runs must hold R values each and the block `out` (rows `stride`
-/// apart) must hold R rows of N + 4 columns from column 0.
+/// apart) must hold R rows of N columns.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
@@ -142,34 +143,37 @@ mod tests {
         if !super::super::fill_simd::available() {
             return;
         }
-        let n = 64;
-        let half = n / 2;
-        let layout = WorkLayout::new(n);
-        let rows = WorkLayout::ROWS;
-        let work: Vec<Complex32> = (0..layout.len())
-            .map(|i| Complex32::new((i as f32 * 0.377).sin() * 3.1, (i as f32 * 1.13).cos() - 0.25))
-            .collect();
-        let kx: Vec<f32> =
-            (0..=half).map(|m| m as f32 * 0.41 - if m == half { 2.0 * half as f32 * 0.41 } else { 0.0 }).collect();
-        let stride = n + BLOCK_PADDING;
-        let mut scalar = vec![Complex32::new(-7.0, -7.0); 4 * rows * stride];
-        let mut simd = scalar.clone();
-        let c = 2; // a task other than the first, of n / rows = 4
-        super::super::cascade::gather_rows(&work, &layout, &kx, c, &mut scalar);
-        // SAFETY: AVX2 checked above.
-        unsafe { gather_rows(&work, &layout, &kx, c, &mut simd) };
-        for (i, (x, y)) in scalar.iter().zip(&simd).enumerate() {
-            assert!(
-                x.re.to_bits() == y.re.to_bits() && x.im.to_bits() == y.im.to_bits(),
-                "pair {} row {} column {}: {x} against {y}",
-                i / (rows * stride),
-                i / stride % rows,
-                i % stride
-            );
-        }
-        // Every entry written (none left at the fill value), padding untouched.
-        for (i, v) in scalar.iter().enumerate() {
-            assert_eq!(v.re == -7.0, i % stride >= n, "entry {i}");
+        // The smallest grid (a single task, half = 8) and a larger one, every task.
+        for n in [16, 64] {
+            let half = n / 2;
+            let layout = WorkLayout::new(n);
+            let rows = WorkLayout::ROWS;
+            let work: Vec<Complex32> = (0..layout.len())
+                .map(|i| Complex32::new((i as f32 * 0.377).sin() * 3.1, (i as f32 * 1.13).cos() - 0.25))
+                .collect();
+            let kx: Vec<f32> =
+                (0..=half).map(|m| m as f32 * 0.41 - if m == half { 2.0 * half as f32 * 0.41 } else { 0.0 }).collect();
+            let stride = n + BLOCK_PADDING;
+            for c in 0..n / rows {
+                let mut scalar = vec![Complex32::new(-7.0, -7.0); 4 * rows * stride];
+                let mut simd = scalar.clone();
+                super::super::cascade::gather_rows(&work, &layout, &kx, c, &mut scalar);
+                // SAFETY: AVX2 checked above.
+                unsafe { gather_rows(&work, &layout, &kx, c, &mut simd) };
+                for (i, (x, y)) in scalar.iter().zip(&simd).enumerate() {
+                    assert!(
+                        x.re.to_bits() == y.re.to_bits() && x.im.to_bits() == y.im.to_bits(),
+                        "n {n} task {c} pair {} row {} column {}: {x} against {y}",
+                        i / (rows * stride),
+                        i / stride % rows,
+                        i % stride
+                    );
+                }
+                // Every entry written (none left at the fill value), padding untouched.
+                for (i, v) in scalar.iter().enumerate() {
+                    assert_eq!(v.re == -7.0, i % stride >= n, "n {n} task {c} entry {i}");
+                }
+            }
         }
     }
 }
