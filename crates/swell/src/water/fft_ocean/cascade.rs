@@ -132,7 +132,7 @@ pub(super) struct Cascade {
     time: f64,
     /// Column pass output: the [`BASES`] bases of each stored row transformed over kz, laid out
     /// by [`WorkLayout`].
-    work: Vec<Complex32>,
+    work: CacheAligned,
     layout: WorkLayout,
     /// The four packed field pairs, `[z][x]`: sample (i, j) sits at local (i L/N, j L/N).
     pub fields: [Vec<Complex32>; 4],
@@ -155,7 +155,7 @@ struct ThreadScratch {
     h: Vec<Complex32>,
     /// The row pass's four pairs' gathered rows, pair p's row z at `(p R + z) (n + BLOCK_PADDING)`,
     /// transformed here, then copied into the fields.
-    block: Vec<Complex32>,
+    block: CacheAligned,
     /// The row's phases in turns, reduced to [-1/2, 1/2], and their sines and cosines (n each).
     turns: Vec<f32>,
     sin: Vec<f32>,
@@ -170,8 +170,37 @@ impl ThreadScratch {
             turns: vec![0.0; n],
             sin: vec![0.0; n],
             cos: vec![0.0; n],
-            block: vec![Complex32::default(); 4 * ROWS_PER_TASK * (n + BLOCK_PADDING)],
+            block: CacheAligned::zeros(4 * ROWS_PER_TASK * (n + BLOCK_PADDING)),
         }
+    }
+}
+
+/// A buffer of complex values whose first value starts a cache line (64 bytes). The allocator
+/// only promises 16 bytes, and the gather's 32-byte loads and stores then split a cache line
+/// every other time, or not, depending on where a buffer happened to land: the row pass's time
+/// varied by about 10 % between builds that differed only in when a buffer was allocated.
+struct CacheAligned {
+    data: Vec<Complex32>,
+    start: usize,
+    len: usize,
+}
+
+impl CacheAligned {
+    /// `len` zeros, the first at a 64-byte boundary.
+    fn zeros(len: usize) -> Self {
+        // 8 values are 64 bytes: the boundary is at most 7 values in.
+        let data = vec![Complex32::default(); len + 8];
+        let start = data.as_ptr().align_offset(64);
+        assert!(start < 8, "Complex32 is 8 bytes");
+        Self { data, start, len }
+    }
+
+    fn as_slice(&self) -> &[Complex32] {
+        &self.data[self.start..self.start + self.len]
+    }
+
+    fn as_mut_slice(&mut self) -> &mut [Complex32] {
+        &mut self.data[self.start..self.start + self.len]
     }
 }
 
@@ -323,7 +352,7 @@ impl Cascade {
             cycles,
             lambda_over_k,
             time: f64::NAN,
-            work: vec![Complex32::default(); WorkLayout::new(n).len()],
+            work: CacheAligned::zeros(WorkLayout::new(n).len()),
             layout: WorkLayout::new(n),
             fields: [zero(), zero(), zero(), zero()],
             wavenumbers,
@@ -363,8 +392,10 @@ impl Cascade {
         let (fft, buffers) = (&self.fft, &self.scratch[..]);
         let per_task = STORED_ROWS_PER_TASK;
         // The Nyquist row's slots, after the stored rows', are left alone.
-        self.work[..layout.slot(n / 2, 0, 0)].par_chunks_mut(per_task * BASES * layout.stride).enumerate().for_each(
-            |(task, chunk)| {
+        self.work.as_mut_slice()[..layout.slot(n / 2, 0, 0)]
+            .par_chunks_mut(per_task * BASES * layout.stride)
+            .enumerate()
+            .for_each(|(task, chunk)| {
                 let mut scratch = thread_scratch(buffers);
                 for (i, slots) in chunk.chunks_exact_mut(BASES * layout.stride).enumerate() {
                     let m = task * per_task + i;
@@ -375,8 +406,7 @@ impl Cascade {
                         fft.process_with_scratch(&mut slot[..n], &mut scratch.fft);
                     }
                 }
-            },
-        );
+            });
         self.time = t;
     }
 
@@ -397,7 +427,7 @@ impl Cascade {
         let n = self.n;
         let rows = WorkLayout::ROWS;
         let (work, layout, fft, kx, avx2) =
-            (&self.work[..], self.layout, &self.fft, &self.wavenumbers[..=n / 2], self.avx2);
+            (self.work.as_slice(), self.layout, &self.fft, &self.wavenumbers[..=n / 2], self.avx2);
         let [f0, f1, f2, f3] = &mut self.fields;
         let chunk = rows * n;
         let tasks = f0
@@ -409,6 +439,7 @@ impl Cascade {
         let body = |task: usize, out: [&mut [Complex32]; 4]| {
             let mut scratch = thread_scratch(buffers);
             let ThreadScratch { block, fft: fft_scratch, .. } = &mut *scratch;
+            let block = block.as_mut_slice();
             let mut gathered = false;
             #[cfg(target_arch = "x86_64")]
             if avx2 {
