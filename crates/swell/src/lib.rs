@@ -63,6 +63,7 @@ pub mod terrain;
 pub mod water;
 
 pub use error::{Error, Result};
+pub use scene::Water;
 
 /// Standard gravity g in m/s², used by every dispersion relation.
 pub const GRAVITY: f32 = 9.81;

@@ -7,11 +7,13 @@ mod presets;
 mod render_settings;
 #[allow(clippy::module_inception)]
 mod scene;
+mod sea_stats;
 mod sky;
 mod terrain_body;
 mod terrain_spec;
 mod water_material;
 mod water_placement;
+mod water_query;
 mod water_spec;
 mod world;
 
@@ -20,6 +22,7 @@ pub use light::{Incident, Light};
 pub use presets::{preset, Preset, PRESETS};
 pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_THREADS};
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
+pub use sea_stats::SeaStats;
 pub use sky::{Sky, SunDisc};
 pub use terrain_body::TerrainBody;
 pub use terrain_spec::{
@@ -27,5 +30,6 @@ pub use terrain_spec::{
 };
 pub use water_material::MAX_ABSORPTION;
 pub use water_placement::WaterPlacement;
+pub use water_query::{Water, NORMAL_STEP_M};
 pub use water_spec::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
 pub use world::{WaterBody, World};

@@ -83,12 +83,18 @@ impl WaterPlacement {
     /// Carries a mesh displaced in the local frame into the world, in place and in parallel:
     /// positions by the full map, normals by the rotation alone (a uniform scale keeps them).
     pub fn apply(&self, mesh: &mut SurfaceMesh) {
+        self.apply_to(&mut mesh.positions, &mut mesh.normals);
+    }
+
+    /// [`WaterPlacement::apply`] on bare buffers: positions (m) by the full map, normals by the
+    /// rotation alone, in place and in parallel.
+    pub fn apply_to(&self, positions: &mut [Vec3], normals: &mut [Vec3]) {
         if self.is_identity() {
             return;
         }
         let (r, pivot, s) = (self.rotation(), self.pivot(), self.scale);
-        mesh.positions.par_iter_mut().for_each(|p| *p = pivot + s * (r * (*p - pivot)));
-        mesh.normals.par_iter_mut().for_each(|n| *n = r * *n);
+        positions.par_iter_mut().for_each(|p| *p = pivot + s * (r * (*p - pivot)));
+        normals.par_iter_mut().for_each(|n| *n = r * *n);
     }
 }
 

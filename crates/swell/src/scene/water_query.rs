@@ -1,0 +1,408 @@
+//! One query API for every water model: [`Water`], the water of a scene asked about a time `t`.
+//!
+//! What an engine, a simulator or a notebook needs from the water, for any `t` (s):
+//!
+//! - the displaced positions and unit normals of the model's grid ([`Water::displace`]), the same
+//!   numbers the renderer draws, `swell export` writes and (in the patch's own frame) `swell bake`
+//!   writes as `position - rest`;
+//! - foam coverage on that grid, where the model has foam ([`Water::foam`]);
+//! - the height and the normal of the surface above many world points at once
+//!   ([`Water::heights_at`], [`Water::normals_at`]), in parallel, agreeing with
+//!   [`World::water_height_at`](super::World::water_height_at).
+//!
+//! ## Time
+//!
+//! Every query takes `t` and the answer depends only on the scene and `t`, never on what was asked
+//! before. The model is brought to `t` only when it is not already there, so many queries at one
+//! time cost one evaluation of the model's state (for the FFT ocean, one spectral synthesis; after
+//! it a point query bilinearly samples the synthesised fields, about a microsecond).
+//!
+//! Stateful models (the spring mesh) step from their current state forward at their own fixed time
+//! step; asked for an earlier time they rebuild from t = 0 and step forward again, so the answer
+//! for a given `t` is the same whatever came before (going back costs the steps from 0 to `t`).
+//! The spring mesh refuses a `t` more than its step limit past its current state
+//! ([`crate::water::MAX_STEPS_PER_ADVANCE`]). [`Water`] offers no `disturb`: a disturbance would make
+//! answers depend on history.
+//!
+//! ## Frames
+//!
+//! Grid positions, normals and point queries are in world coordinates: the patch's
+//! [`WaterPlacement`] (turn and uniform scale about its centre) is applied, as the renderer does.
+//! Rows of the grid run along +Z (`rows = cells_z + 1`), columns along +X (`cols = cells_x + 1`);
+//! vertex (column i, row j) is at index `j * cols + i`.
+//!
+//! ## Threads
+//!
+//! Queries take `&mut self` (they move the cached state): share one [`Water`] between threads
+//! behind a lock, or give each thread its own. The work inside one call runs on rayon's current
+//! pool and the results do not depend on its size.
+//!
+//! ```
+//! use glam::Vec2;
+//! use swell::Water;
+//!
+//! let text = "version = 1\n[camera]\neye = [0.0, 20.0, 40.0]\ntarget = [0.0, 0.0, 0.0]\n\
+//!             [water]\nmodel = 'fft'\ngrid = 32\nsize = [100.0, 100.0]\ncells = [32, 32]\n";
+//! let mut water = Water::from_toml(text, "example")?;
+//! let (rows, cols) = (water.rows(), water.cols());
+//! let mut positions = vec![glam::Vec3::ZERO; rows * cols];
+//! let mut normals = vec![glam::Vec3::ZERO; rows * cols];
+//! water.displace(2.0, &mut positions, &mut normals)?;
+//! // A floating object's height, asked at the same time: one synthesis served both calls.
+//! let mut h = [0.0f32; 2];
+//! water.heights_at(2.0, &[Vec2::new(3.0, -4.0), Vec2::new(10.0, 7.5)], &mut h)?;
+//! assert!(h.iter().all(|h| h.abs() < 10.0));
+//! # Ok::<(), swell::Error>(())
+//! ```
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use super::{Scene, WaterPlacement, WaterSpec};
+use crate::error::{Error, Result};
+use crate::math::GridSpec;
+use crate::water::WaveModel;
+
+/// Horizontal step (world metres) of the central differences [`Water::normals_at`] takes of the
+/// height: small against every wavelength a scene allows, large against the f32 spacing of
+/// coordinates within a few kilometres of the origin (0.5 mm at 4 km).
+pub const NORMAL_STEP_M: f32 = 0.02;
+
+/// Points per parallel task of the batched point queries: large enough that scheduling costs
+/// nothing against the queries, small enough that two cores share a thousand points evenly.
+const POINTS_PER_TASK: usize = 256;
+
+/// The water of a scene, built and ready to answer queries about any time. See the module docs.
+pub struct Water {
+    spec: WaterSpec,
+    model: Box<dyn WaveModel>,
+    grid: GridSpec,
+    placement: WaterPlacement,
+    /// The time the model's state is at, seconds.
+    time: f64,
+}
+
+impl std::fmt::Debug for Water {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Water").field("grid", &self.grid).field("placement", &self.placement).finish_non_exhaustive()
+    }
+}
+
+/// Checks a time: finite seconds.
+fn check_time(t: f64) -> Result<()> {
+    if t.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::out_of_range("t", t, "finite seconds"))
+    }
+}
+
+/// Checks that a caller's buffer `name` holds exactly `expected` elements.
+fn check_len(name: &str, len: usize, expected: usize, what: &str) -> Result<()> {
+    if len == expected {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, format!("holds {len} elements; must hold {expected} ({what})")))
+    }
+}
+
+impl Water {
+    /// Builds the water of a scene's `[water]` section, validating it, at time 0 (as
+    /// [`World::new`](super::World::new) does).
+    pub fn new(spec: &WaterSpec) -> Result<Self> {
+        spec.validate()?;
+        let mut model = spec.model.build()?;
+        model.advance(0.0)?;
+        Ok(Self {
+            spec: spec.clone(),
+            model,
+            grid: spec.surface.grid()?,
+            placement: spec.surface.placement()?,
+            time: 0.0,
+        })
+    }
+
+    /// Builds the water of `scene`; an error names `water` if the scene has none.
+    pub fn from_scene(scene: &Scene) -> Result<Self> {
+        match &scene.water {
+            Some(spec) => Self::new(spec),
+            None => Err(Error::invalid("water", "the scene has no [water] section: there is no water to query")),
+        }
+    }
+
+    /// Parses a scene's TOML text (see `docs/scene-format.md`) and builds its water; `source` (a
+    /// path or a name) is named in parse errors. The errors are the CLI's (`swell render` prints
+    /// the same text after `error: `).
+    pub fn from_toml(text: &str, source: &str) -> Result<Self> {
+        Self::from_scene(&Scene::from_toml(text, source)?)
+    }
+
+    /// The `[water]` section this water was built from.
+    pub fn spec(&self) -> &WaterSpec {
+        &self.spec
+    }
+
+    /// The model's grid, in the patch's own frame (before [`Water::placement`]).
+    pub fn grid(&self) -> &GridSpec {
+        &self.grid
+    }
+
+    /// Where the patch sits in the world.
+    pub fn placement(&self) -> &WaterPlacement {
+        &self.placement
+    }
+
+    /// Rows of the grid (vertices along +Z, `cells_z + 1`).
+    pub fn rows(&self) -> usize {
+        self.grid.verts_z()
+    }
+
+    /// Columns of the grid (vertices along +X, `cells_x + 1`).
+    pub fn cols(&self) -> usize {
+        self.grid.verts_x()
+    }
+
+    /// Vertices of the grid, `rows * cols`: the length of the buffers [`Water::displace`] and
+    /// [`Water::foam`] fill.
+    pub fn vertex_count(&self) -> usize {
+        self.grid.vertex_count()
+    }
+
+    /// The time (s) the model's state is at: the `t` of the last query (0 after building).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Brings the model to time `t` (s) unless it is already there. Every query calls it; call it
+    /// yourself to pay for the state's evaluation at a moment of your choosing.
+    pub fn advance_to(&mut self, t: f64) -> Result<()> {
+        check_time(t)?;
+        if t != self.time {
+            // On failure the state is unknown: rebuild it on the next query rather than trust it.
+            self.time = f64::NAN;
+            self.model.advance(t)?;
+            self.time = t;
+        }
+        Ok(())
+    }
+
+    /// Writes the displaced world position (m) and unit normal of every grid vertex at time `t`
+    /// (s), row-major (see the module docs). Both buffers must hold [`Water::vertex_count`]
+    /// elements. The numbers are those [`World::update`](super::World::update) gives its mesh.
+    pub fn displace(&mut self, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) -> Result<()> {
+        let n = self.vertex_count();
+        let what = format!("the grid's {} rows x {} columns of vertices", self.rows(), self.cols());
+        check_len("positions", positions.len(), n, &what)?;
+        check_len("normals", normals.len(), n, &what)?;
+        self.advance_to(t)?;
+        self.model.evaluate(&self.grid, t, positions, normals);
+        self.placement.apply_to(positions, normals);
+        let finite = |v: &Vec3| v.is_finite();
+        if positions.par_iter().all(finite) && normals.par_iter().all(finite) {
+            Ok(())
+        } else {
+            Err(Error::Unstable(format!(
+                "the water model produced non-finite positions or normals at time {t} s; \
+                 reduce the wave amplitudes, wavelengths or speeds in [water]"
+            )))
+        }
+    }
+
+    /// Writes foam coverage in [0, 1] of every grid vertex at time `t` (s) into `out` (length
+    /// [`Water::vertex_count`]) and returns true, or returns false and leaves `out` untouched if
+    /// the model has no foam (only the FFT ocean with `foam = true` has).
+    pub fn foam(&mut self, t: f64, out: &mut [f32]) -> Result<bool> {
+        let what = format!("the grid's {} rows x {} columns of vertices", self.rows(), self.cols());
+        check_len("foam", out.len(), self.vertex_count(), &what)?;
+        self.advance_to(t)?;
+        Ok(self.model.foam(&self.grid, out))
+    }
+
+    /// Height (m above the water at rest, y = 0) of the surface above world (x, z) at time `t`
+    /// (s). Covers the whole plane, not only the patch. See [`Water::heights_at`].
+    pub fn height_at(&mut self, x: f32, z: f32, t: f64) -> Result<f32> {
+        let mut h = [0.0];
+        self.heights_at(t, &[Vec2::new(x, z)], &mut h)?;
+        Ok(h[0])
+    }
+
+    /// Heights (m) of the surface above the world points `points` = (x, z) (m) at time `t` (s),
+    /// into `out` (same length), in parallel; each point's answer is the one
+    /// [`World::water_height_at`](super::World::water_height_at) gives. Non-finite points give
+    /// non-finite heights. Accuracy is each model's [`WaveModel::height_at`]'s.
+    pub fn heights_at(&mut self, t: f64, points: &[Vec2], out: &mut [f32]) -> Result<()> {
+        check_len("heights", out.len(), points.len(), "one per point")?;
+        self.advance_to(t)?;
+        let (model, placement) = (self.model.as_ref(), self.placement);
+        out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
+            for (h, p) in o.iter_mut().zip(p) {
+                *h = world_height(model, &placement, *p, t);
+            }
+        });
+        Ok(())
+    }
+
+    /// Unit normals of the surface above the world points `points` = (x, z) (m) at time `t` (s),
+    /// into `out` (same length), in parallel: central differences of the height over
+    /// [`NORMAL_STEP_M`], so five height queries per point. They agree with the grid's analytic
+    /// normals to the differences' accuracy (the slope's change over 2 cm).
+    pub fn normals_at(&mut self, t: f64, points: &[Vec2], out: &mut [Vec3]) -> Result<()> {
+        check_len("normals", out.len(), points.len(), "one per point")?;
+        self.advance_to(t)?;
+        let (model, placement) = (self.model.as_ref(), self.placement);
+        out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
+            for (n, p) in o.iter_mut().zip(p) {
+                *n = world_normal(model, &placement, *p, t);
+            }
+        });
+        Ok(())
+    }
+}
+
+/// The world height above world (x, z): the model asked at the local point that lands there.
+fn world_height(model: &dyn WaveModel, placement: &WaterPlacement, p: Vec2, t: f64) -> f32 {
+    let l = placement.to_local_xz(p);
+    placement.to_world_height(model.height_at(l.x, l.y, t))
+}
+
+/// The unit normal above world (x, z) by central differences of [`world_height`].
+fn world_normal(model: &dyn WaveModel, placement: &WaterPlacement, p: Vec2, t: f64) -> Vec3 {
+    let e = NORMAL_STEP_M;
+    let h = |dx: f32, dz: f32| world_height(model, placement, p + Vec2::new(dx, dz), t);
+    let slope_x = (h(e, 0.0) - h(-e, 0.0)) / (2.0 * e);
+    let slope_z = (h(0.0, e) - h(0.0, -e)) / (2.0 * e);
+    Vec3::new(-slope_x, 1.0, -slope_z).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{preset, World};
+
+    /// A small version of preset `name`: `cells` per side (if it has water).
+    fn small(name: &str, cells: u32) -> Scene {
+        let mut s = preset(name).unwrap();
+        if let Some(w) = &mut s.water {
+            w.surface.cells = [cells, cells];
+        }
+        s
+    }
+
+    fn grid_of(w: &mut Water, t: f64) -> (Vec<Vec3>, Vec<Vec3>) {
+        let n = w.vertex_count();
+        let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+        w.displace(t, &mut p, &mut q).unwrap();
+        (p, q)
+    }
+
+    #[test]
+    fn the_grid_and_heights_are_the_world_s_for_every_preset_with_water() {
+        for p in crate::scene::PRESETS {
+            let scene = small(p.name, 24);
+            if scene.water.is_none() {
+                continue;
+            }
+            let mut water = Water::from_scene(&scene).unwrap();
+            let mut world = World::new(scene).unwrap();
+            for t in [0.0, 1.25, 0.5] {
+                world.update(t).unwrap();
+                let (pos, nrm) = grid_of(&mut water, t);
+                let mesh = &world.water.as_ref().unwrap().mesh;
+                assert_eq!(pos, mesh.positions, "{} t = {t}", p.name);
+                assert_eq!(nrm, mesh.normals, "{} t = {t}", p.name);
+                let pts = [Vec2::new(1.5, -2.0), Vec2::new(-7.0, 3.25)];
+                let mut h = [0.0; 2];
+                water.heights_at(t, &pts, &mut h).unwrap();
+                for (k, q) in pts.iter().enumerate() {
+                    assert_eq!(Some(h[k]), world.water_height_at(q.x, q.y), "{} t = {t}", p.name);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn answers_do_not_depend_on_the_order_or_history_of_calls() {
+        for name in ["ocean", "springs", "sea", "river"] {
+            let scene = small(name, 16);
+            let pts: Vec<Vec2> =
+                (0..50).map(|k| Vec2::new(k as f32 * 0.7 - 17.0, (k as f32 * 1.3).sin() * 9.0)).collect();
+            let ask = |w: &mut Water, t: f64| {
+                let mut h = vec![0.0; pts.len()];
+                w.heights_at(t, &pts, &mut h).unwrap();
+                let (p, n) = grid_of(w, t);
+                (h, p, n)
+            };
+            let mut fresh = Water::from_scene(&scene).unwrap();
+            let expected = ask(&mut fresh, 2.0);
+            let mut used = Water::from_scene(&scene).unwrap();
+            for t in [3.0, 0.5, 2.0, 7.25, 2.0, 1.0] {
+                ask(&mut used, t);
+            }
+            assert_eq!(ask(&mut used, 2.0), expected, "{name}");
+            assert_eq!(used.time(), 2.0);
+        }
+    }
+
+    #[test]
+    fn a_placed_patch_answers_in_world_coordinates() {
+        let mut scene = small("sea", 16);
+        let s = &mut scene.water.as_mut().unwrap().surface;
+        (s.yaw_deg, s.uniform_scale, s.center) = (30.0, 1.5, Vec2::new(4.0, -3.0));
+        let mut water = Water::from_scene(&scene).unwrap();
+        let mut world = World::new(scene).unwrap();
+        world.update(0.75).unwrap();
+        let (pos, _) = grid_of(&mut water, 0.75);
+        assert_eq!(pos, world.water.as_ref().unwrap().mesh.positions);
+        let pts: Vec<Vec2> = pos.iter().step_by(37).map(|p| Vec2::new(p.x, p.z)).collect();
+        let mut h = vec![0.0; pts.len()];
+        water.heights_at(0.75, &pts, &mut h).unwrap();
+        for (k, p) in pos.iter().step_by(37).enumerate() {
+            assert!((h[k] - p.y).abs() < 1e-3, "vertex {k}: query {} vs mesh {}", h[k], p.y);
+        }
+    }
+
+    #[test]
+    fn point_normals_agree_with_the_grid_s_analytic_normals() {
+        let mut water = Water::from_scene(&small("sea", 64)).unwrap();
+        let (pos, nrm) = grid_of(&mut water, 1.0);
+        let idx: Vec<usize> = (0..pos.len()).step_by(97).collect();
+        let pts: Vec<Vec2> = idx.iter().map(|&k| Vec2::new(pos[k].x, pos[k].z)).collect();
+        let mut n = vec![Vec3::ZERO; pts.len()];
+        water.normals_at(1.0, &pts, &mut n).unwrap();
+        for (q, &k) in idx.iter().enumerate() {
+            assert!((n[q].length() - 1.0).abs() < 1e-5);
+            assert!(n[q].dot(nrm[k]) > 0.999, "vertex {k}: {} vs {}", n[q], nrm[k]);
+        }
+    }
+
+    #[test]
+    fn foam_is_reported_only_by_models_that_have_it() {
+        let mut ocean = Water::from_scene(&small("ocean", 16)).unwrap();
+        let mut out = vec![-1.0; ocean.vertex_count()];
+        assert!(ocean.foam(1.0, &mut out).unwrap());
+        assert!(out.iter().all(|f| (0.0..=1.0).contains(f)));
+        let mut sea = Water::from_scene(&small("sea", 16)).unwrap();
+        let mut out = vec![-1.0; sea.vertex_count()];
+        assert!(!sea.foam(1.0, &mut out).unwrap());
+        assert!(out.iter().all(|f| *f == -1.0));
+    }
+
+    #[test]
+    fn bad_input_is_an_error_naming_the_parameter() {
+        let mut w = Water::from_scene(&small("sea", 4)).unwrap();
+        let (mut p, mut n) = (vec![Vec3::ZERO; 24], vec![Vec3::ZERO; 25]);
+        let e = w.displace(0.0, &mut p, &mut n).unwrap_err().to_string();
+        assert_eq!(e, "positions: holds 24 elements; must hold 25 (the grid's 5 rows x 5 columns of vertices)");
+        let e = w.heights_at(f64::NAN, &[Vec2::ZERO], &mut [0.0]).unwrap_err().to_string();
+        assert_eq!(e, "t = NaN is outside finite seconds");
+        let e = w.heights_at(0.0, &[Vec2::ZERO], &mut []).unwrap_err().to_string();
+        assert_eq!(e, "heights: holds 0 elements; must hold 1 (one per point)");
+        let e = w.foam(f64::INFINITY, &mut vec![0.0; 25]).unwrap_err().to_string();
+        assert!(e.starts_with("t = inf"), "{e}");
+        let no_water = "version = 1\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n";
+        let e = Water::from_toml(no_water, "t").unwrap_err().to_string();
+        assert!(e.starts_with("water: the scene has no [water] section"), "{e}");
+        let e = Water::from_toml("version = 1\n[water]\nmodel = 'sines'\ncells = [0, 4]\n", "t").unwrap_err();
+        assert!(e.to_string().contains("water.cells[0] = 0") || e.to_string().contains("camera"), "{e}");
+    }
+}
