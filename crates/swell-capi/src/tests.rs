@@ -1,0 +1,201 @@
+//! The entry points called as C would call them: results, errors and messages, agreement with
+//! the library.
+
+use std::ffi::CString;
+use std::ptr::{null, null_mut};
+
+use super::*;
+use swell_lib::scene::preset;
+
+fn last_error() -> String {
+    // SAFETY: swell_last_error_message never returns NULL.
+    unsafe { CStr::from_ptr(swell_last_error_message()) }.to_str().unwrap().to_string()
+}
+
+/// The `sea` preset with a small grid, as TOML text.
+fn sea_text(cells: u32) -> CString {
+    let mut s = preset("sea").unwrap();
+    s.water.as_mut().unwrap().surface.cells = [cells, cells];
+    (s.render.width, s.render.height) = (64, 36);
+    CString::new(s.to_toml()).unwrap()
+}
+
+fn water(text: &CString) -> *mut SwellWater {
+    let mut w = null_mut();
+    assert_eq!(unsafe { swell_water_from_toml(text.as_ptr(), &mut w) }, SwellResult::Ok, "{}", last_error());
+    w
+}
+
+#[test]
+fn the_version_is_the_crate_s() {
+    let v = unsafe { CStr::from_ptr(swell_version()) };
+    assert_eq!(v.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+}
+
+#[test]
+fn displaced_grid_and_heights_equal_the_library_s() {
+    let text = sea_text(8);
+    let w = water(&text);
+    let (mut rows, mut cols) = (0, 0);
+    assert_eq!(unsafe { swell_water_grid_size(w, &mut rows, &mut cols) }, SwellResult::Ok);
+    assert_eq!((rows, cols), (9, 9));
+    let n = rows * cols;
+    let (mut p, mut q) = (vec![0.0f32; 3 * n], vec![0.0f32; 3 * n]);
+    let r = unsafe { swell_water_displace(w, 1.5, p.as_mut_ptr(), p.len(), q.as_mut_ptr(), q.len()) };
+    assert_eq!(r, SwellResult::Ok);
+    let mut lib = Water::from_toml(text.to_str().unwrap(), "t").unwrap();
+    let (mut lp, mut lq) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    lib.displace(1.5, &mut lp, &mut lq).unwrap();
+    let flat = |v: &[Vec3]| v.iter().flat_map(|v| v.to_array()).collect::<Vec<f32>>();
+    assert_eq!((p, q), (flat(&lp), flat(&lq)));
+    let xz = [1.0f32, 2.0, -3.0, 4.5];
+    let mut h = [0.0f32; 2];
+    let r = unsafe { swell_water_heights(w, 1.5, xz.as_ptr(), 4, h.as_mut_ptr(), 2) };
+    assert_eq!(r, SwellResult::Ok);
+    assert_eq!(h[1], lib.height_at(-3.0, 4.5, 1.5).unwrap());
+    let mut nrm = [0.0f32; 6];
+    let r = unsafe { swell_water_normals(w, 1.5, xz.as_ptr(), 4, nrm.as_mut_ptr(), 6) };
+    assert_eq!(r, SwellResult::Ok);
+    assert!(nrm[1] > 0.5 && nrm[4] > 0.5, "{nrm:?}");
+    let mut foam = vec![7.0f32; n];
+    let mut has = true;
+    let r = unsafe { swell_water_foam(w, 1.5, foam.as_mut_ptr(), n, &mut has) };
+    assert_eq!((r, has), (SwellResult::Ok, false));
+    assert!(foam.iter().all(|f| *f == 7.0));
+    unsafe { swell_water_destroy(w) };
+}
+
+#[test]
+fn every_bad_input_is_a_code_and_a_message_naming_the_parameter() {
+    let text = sea_text(4);
+    let w = water(&text);
+    let mut buf = vec![0.0f32; 75];
+    let cases: Vec<(SwellResult, SwellResult, &str)> = unsafe {
+        vec![
+            (
+                swell_water_displace(w, 0.0, buf.as_mut_ptr(), 74, buf.as_mut_ptr(), 75),
+                SwellResult::InvalidArgument,
+                "positions_len: 74; must be 75 (3 floats per vertex x 5 rows x 5 columns)",
+            ),
+            (
+                swell_water_displace(w, f64::NAN, buf.as_mut_ptr(), 75, buf.as_mut_ptr(), 75),
+                SwellResult::InvalidArgument,
+                "t = NaN is outside finite seconds",
+            ),
+            (
+                swell_water_displace(null_mut(), 0.0, buf.as_mut_ptr(), 75, buf.as_mut_ptr(), 75),
+                SwellResult::NullPointer,
+                "water: is NULL",
+            ),
+            (
+                swell_water_displace(w, 0.0, null_mut(), 75, buf.as_mut_ptr(), 75),
+                SwellResult::NullPointer,
+                "positions: is NULL",
+            ),
+            (
+                swell_water_heights(w, 0.0, buf.as_ptr(), 3, buf.as_mut_ptr(), 1),
+                SwellResult::InvalidArgument,
+                "xz_len: 3; must be even (pairs of x, z)",
+            ),
+            (
+                swell_water_heights(w, 0.0, buf.as_ptr(), 4, buf.as_mut_ptr(), 3),
+                SwellResult::InvalidArgument,
+                "heights_len: 3; must be 2 (one height per (x, z) pair: xz_len / 2)",
+            ),
+            (
+                swell_water_normals(w, 0.0, buf.as_ptr(), 4, buf.as_mut_ptr(), 3),
+                SwellResult::InvalidArgument,
+                "normals_len: 3; must be 6 (3 floats per (x, z) pair: 3 * xz_len / 2)",
+            ),
+            (swell_water_foam(w, 0.0, buf.as_mut_ptr(), 24, null_mut()), SwellResult::NullPointer, "has_foam: is NULL"),
+            (swell_water_grid_size(w, null_mut(), null_mut()), SwellResult::NullPointer, "rows: is NULL"),
+        ]
+    };
+    for (got, code, message) in cases {
+        assert_eq!(got, code, "{message}");
+        // Each failure set the message; check the last one below and each code here.
+    }
+    // Messages, one call at a time.
+    let r = unsafe { swell_water_heights(w, 0.0, buf.as_ptr(), 4, buf.as_mut_ptr(), 3) };
+    assert_eq!(r, SwellResult::InvalidArgument);
+    assert_eq!(last_error(), "heights_len: 3; must be 2 (one height per (x, z) pair: xz_len / 2)");
+    let r = unsafe { swell_water_displace(w, f64::INFINITY, buf.as_mut_ptr(), 75, buf.as_mut_ptr(), 75) };
+    assert_eq!(r, SwellResult::InvalidArgument);
+    assert_eq!(last_error(), "t = inf is outside finite seconds");
+    // A success leaves the message alone.
+    let mut other = vec![0.0f32; 75];
+    let r = unsafe { swell_water_displace(w, 0.0, buf.as_mut_ptr(), 75, other.as_mut_ptr(), 75) };
+    assert_eq!(r, SwellResult::Ok);
+    assert_eq!(last_error(), "t = inf is outside finite seconds");
+    unsafe { swell_water_destroy(w) };
+    unsafe { swell_water_destroy(null_mut()) };
+}
+
+#[test]
+fn bad_scenes_are_scene_errors_with_the_cli_s_message() {
+    let mut out = null_mut();
+    let bad = CString::new(
+        "version = 1\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n\
+         [water]\nmodel = 'gerstner'\n[[water.waves]]\namplitude = 1.0\nwavelength = 10.0\nspeed = 3.0\n\
+         direction = [1.0, 0.0]\nsteepness = 1.7\n",
+    )
+    .unwrap();
+    assert_eq!(unsafe { swell_water_from_toml(bad.as_ptr(), &mut out) }, SwellResult::Scene);
+    assert!(out.is_null());
+    assert_eq!(last_error(), "water.waves[0].steepness = 1.7 is outside [0, 1]");
+    let syntax = CString::new("version = 1\n[camera\n").unwrap();
+    assert_eq!(unsafe { swell_water_from_toml(syntax.as_ptr(), &mut out) }, SwellResult::Scene);
+    assert!(last_error().starts_with("toml: TOML parse error"), "{}", last_error());
+    assert_eq!(unsafe { swell_water_from_toml(null(), &mut out) }, SwellResult::NullPointer);
+    assert_eq!(last_error(), "toml: is NULL");
+    let not_utf8 = [0xffu8, 0xfe, 0];
+    assert_eq!(
+        unsafe { swell_scene_from_toml(not_utf8.as_ptr().cast(), &mut out.cast()) },
+        SwellResult::InvalidArgument
+    );
+    assert!(last_error().starts_with("toml: is not UTF-8 text"), "{}", last_error());
+    let sea = sea_text(4);
+    assert_eq!(unsafe { swell_scene_from_toml(sea.as_ptr(), null_mut()) }, SwellResult::NullPointer);
+    assert_eq!(last_error(), "out: is NULL");
+}
+
+#[test]
+fn a_rendered_frame_is_the_library_s() {
+    let text = sea_text(16);
+    let mut scene = null_mut();
+    assert_eq!(unsafe { swell_scene_from_toml(text.as_ptr(), &mut scene) }, SwellResult::Ok);
+    let (mut w, mut h) = (0, 0);
+    assert_eq!(unsafe { swell_scene_image_size(scene, &mut w, &mut h) }, SwellResult::Ok);
+    assert_eq!((w, h), (64, 36));
+    let mut rgba = vec![0u8; 4 * 64 * 36];
+    assert_eq!(unsafe { swell_scene_render_rgba8(scene, 2.0, rgba.as_mut_ptr(), rgba.len()) }, SwellResult::Ok);
+    let mut world = World::new(Scene::from_toml(text.to_str().unwrap(), "t").unwrap()).unwrap();
+    world.update(2.0).unwrap();
+    let mut expected = Vec::new();
+    let r = world.scene.render;
+    Renderer::new().render(&world).encode_rgba8(r.exposure, r.gamma, &mut expected);
+    assert_eq!(rgba, expected);
+    let r = unsafe { swell_scene_render_rgba8(scene, 2.0, rgba.as_mut_ptr(), rgba.len() - 1) };
+    assert_eq!(r, SwellResult::InvalidArgument);
+    assert_eq!(last_error(), "rgba_len: 9215; must be 9216 (4 bytes x 64 x 36 pixels)");
+    unsafe { swell_scene_destroy(scene) };
+}
+
+#[test]
+fn a_panic_inside_becomes_a_code_not_an_unwind() {
+    let r = guard(|| panic!("boom"));
+    assert_eq!(r, SwellResult::Panic);
+    assert!(last_error().ends_with("boom"), "{}", last_error());
+}
+
+#[test]
+fn the_message_is_per_thread() {
+    set_last_error("main thread");
+    std::thread::spawn(|| {
+        assert_eq!(last_error(), "");
+        set_last_error("other thread");
+    })
+    .join()
+    .unwrap();
+    assert_eq!(last_error(), "main thread");
+}

@@ -1,0 +1,183 @@
+//! The C and C++ examples, built with the system's plain `cc` and `c++` against the library cargo
+//! just built (installed with `install.sh` and found through pkg-config), run, compared number for
+//! number with the Rust library, and run again under valgrind: no errors, no leaks.
+//!
+//! Without a C compiler the test says so and passes; with `SWELL_REQUIRE_C_TOOLS=1` (CI) a missing
+//! `cc`, `c++`, `pkg-config` or `valgrind` is a failure.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use swell_lib::Water;
+
+fn crate_dir() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Builds `libswell.so` and `libswell.a` with the profile of this test and returns their directory.
+///
+/// The test binary is target/<dir>/deps/c_examples-<hash>. Cargo does not build a cdylib or
+/// staticlib for a package's integration tests (they link to rlibs), so this builds them, with
+/// the test's own profile so that everything but the C library itself is already compiled.
+fn lib_dir() -> PathBuf {
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().and_then(Path::parent).unwrap().to_path_buf();
+    let profile = if dir.ends_with("release") { "release" } else { "test" };
+    let root = crate_dir().parent().and_then(Path::parent).unwrap();
+    run(Command::new(env!("CARGO")).current_dir(root).args(["build", "-p", "swell-capi", "--profile", profile]));
+    dir
+}
+
+fn have(tool: &str) -> bool {
+    let found = Command::new(tool).arg("--version").output().is_ok_and(|o| o.status.success());
+    if !found && std::env::var_os("SWELL_REQUIRE_C_TOOLS").is_some() {
+        panic!("{tool} is missing and SWELL_REQUIRE_C_TOOLS is set");
+    }
+    found
+}
+
+fn run(cmd: &mut Command) -> String {
+    let out = cmd.output().unwrap_or_else(|e| panic!("{cmd:?}: {e}"));
+    assert!(
+        out.status.success(),
+        "{cmd:?} failed ({}):\nstdout:\n{}\nstderr:\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// The scene text of examples/ocean.c: its `SCENE` string literal, unescaped.
+fn example_scene() -> String {
+    let src = std::fs::read_to_string(crate_dir().join("examples/ocean.c")).unwrap();
+    let start = src.find("static const char *SCENE =").expect("ocean.c defines SCENE");
+    let mut text = String::new();
+    for line in src[start..].lines().skip(1).map(str::trim) {
+        let literal = line.trim_end_matches(';');
+        let inner = literal.strip_prefix('"').and_then(|l| l.strip_suffix('"')).expect("one literal per line");
+        text.push_str(&inner.replace("\\n", "\n"));
+        if line.ends_with(';') {
+            break;
+        }
+    }
+    text
+}
+
+/// Installs the library into a temporary prefix with install.sh and returns pkg-config's flags.
+fn install(prefix: &Path, lib_dir: &Path, static_link: bool) -> Vec<String> {
+    run(Command::new("sh").arg(crate_dir().join("install.sh")).arg(prefix).arg(lib_dir));
+    let mut cmd = Command::new("pkg-config");
+    cmd.env("PKG_CONFIG_PATH", prefix.join("lib/pkgconfig")).args(["--cflags", "--libs", "swell"]);
+    if static_link {
+        cmd.arg("--static");
+    }
+    run(&mut cmd).split_whitespace().map(String::from).collect()
+}
+
+fn valgrind(program: &Path, ld_path: &Path) -> String {
+    let out = Command::new("valgrind")
+        .args([
+            "--leak-check=full",
+            "--show-leak-kinds=definite,indirect,possible",
+            "--errors-for-leak-kinds=definite,indirect,possible",
+            "--error-exitcode=1",
+        ])
+        .arg(format!("--suppressions={}", crate_dir().join("tests/valgrind.supp").display()))
+        .arg(program)
+        .env("LD_LIBRARY_PATH", ld_path)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "valgrind found errors in {}:\n{stderr}", program.display());
+    assert!(stderr.contains("ERROR SUMMARY: 0 errors"), "{stderr}");
+    stderr
+}
+
+/// Numbers after `key` on a line of the examples' output.
+fn numbers_after(line: &str, key: &str, count: usize) -> Vec<f32> {
+    let rest = &line[line.find(key).unwrap_or_else(|| panic!("no `{key}` in {line}")) + key.len()..];
+    rest.split_whitespace().take(count).map(|s| s.parse().unwrap()).collect()
+}
+
+#[test]
+fn the_c_and_cpp_examples_agree_with_the_library_and_pass_valgrind() {
+    if !(have("cc") && have("c++") && have("pkg-config")) {
+        eprintln!("skipped: cc, c++ or pkg-config not found");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let prefix = dir.path().join("prefix");
+    let lib_dir = lib_dir();
+    let examples = crate_dir().join("examples");
+
+    // C against the shared library, C++ against the static one.
+    let shared = install(&prefix, &lib_dir, false);
+    let c_exe = dir.path().join("ocean_c");
+    run(Command::new("cc")
+        .args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
+        .arg(examples.join("ocean.c"))
+        .args(&shared)
+        .arg("-o")
+        .arg(&c_exe));
+    let static_flags = install(&prefix, &lib_dir, true);
+    let cpp_exe = dir.path().join("ocean_cpp");
+    let libs: Vec<&String> = static_flags.iter().filter(|f| *f != "-lswell").collect();
+    run(Command::new("c++")
+        .args(["-std=c++17", "-Wall", "-Wextra", "-Werror"])
+        .arg(examples.join("ocean.cpp"))
+        .arg(prefix.join("lib/libswell.a"))
+        .args(&libs)
+        .arg("-o")
+        .arg(&cpp_exe));
+    let ld = prefix.join("lib");
+    let c_out = run(Command::new(&c_exe).env("LD_LIBRARY_PATH", &ld));
+    let cpp_out = run(&mut Command::new(&cpp_exe));
+
+    // The same numbers as the Rust library, bit for bit (printed with 9 significant digits).
+    let mut water = Water::from_toml(&example_scene(), "example").unwrap();
+    let n = water.vertex_count();
+    let (mut p, mut q) = (vec![glam::Vec3::ZERO; n], vec![glam::Vec3::ZERO; n]);
+    let c_frames: Vec<&str> = c_out.lines().filter(|l| l.starts_with("t ")).collect();
+    let cpp_frames: Vec<&str> = cpp_out.lines().filter(|l| l.starts_with("t ")).collect();
+    assert_eq!((c_frames.len(), cpp_frames.len()), (3, 3), "{c_out}\n{cpp_out}");
+    for (c, cpp) in c_frames.iter().zip(&cpp_frames) {
+        let t = f64::from(numbers_after(c, "t ", 1)[0]);
+        let t = (t * 24.0).round() / 24.0;
+        water.displace(t, &mut p, &mut q).unwrap();
+        let pts = [glam::Vec2::new(3.0, -4.0), glam::Vec2::new(10.0, 7.5), glam::Vec2::new(-20.0, 12.25)];
+        let mut h = [0.0; 3];
+        water.heights_at(t, &pts, &mut h).unwrap();
+        assert_eq!(numbers_after(c, "buoy ", 3), h.to_vec(), "{c}");
+        assert_eq!(numbers_after(c, "vertex0 ", 3), p[0].to_array().to_vec(), "{c}");
+        assert_eq!(numbers_after(cpp, "buoy ", 1), vec![h[0]], "{cpp}");
+        assert_eq!(numbers_after(cpp, "vertex0 ", 3), p[0].to_array().to_vec(), "{cpp}");
+        assert!(c.contains("foam 1"), "the example's ocean has foam: {c}");
+    }
+    // Errors reach C as codes with the CLI's messages.
+    assert!(
+        c_out.contains(
+            "short buffer -> 2: positions_len: 3266; must be 3267 (3 floats per vertex x 33 rows x 33 columns)"
+        ),
+        "{c_out}"
+    );
+    assert!(c_out.contains("bad scene -> 3: water.grid = 100 is outside powers of two in [16, 2048]"), "{c_out}");
+    assert!(cpp_out.contains("bad scene: water.grid = 100 is outside powers of two in [16, 2048]"), "{cpp_out}");
+    // The render is the same frame in both.
+    let render = |s: &str| s.lines().find(|l| l.starts_with("rendered")).map(String::from);
+    assert_eq!(render(&c_out), render(&cpp_out));
+    assert!(render(&c_out).unwrap().starts_with("rendered 96x54"));
+
+    if !have("valgrind") {
+        eprintln!("valgrind not found: the examples ran, but not under valgrind");
+        return;
+    }
+    for exe in [&c_exe, &cpp_exe] {
+        let report = valgrind(exe, &ld);
+        eprintln!(
+            "valgrind {}: {}",
+            exe.display(),
+            report.lines().filter(|l| l.contains("SUMMARY")).collect::<Vec<_>>().join(" | ")
+        );
+    }
+}
