@@ -1,0 +1,20 @@
+"""swell: water surfaces simulated and rendered on the CPU, from Python.
+
+One scene, written in swell's TOML scene format (docs/scene-format.md; only ``[water]`` is
+required for the water queries), answers for any time ``t`` in seconds:
+
+* ``Water.displace(t)``: the displaced grid's positions and normals, float32 ``(rows, cols, 3)``;
+* ``Water.foam(t)``: foam coverage per vertex, or None for models without foam;
+* ``Water.height_at(x, z, t)`` and ``Water.normal_at(x, z, t)``: the surface above world points,
+  numpy broadcasting, computed in parallel with the GIL released;
+* ``render(text, t)``: the frame ``swell render`` draws, as a ``(height, width, 3)`` uint8 array;
+* ``stats(text, t)``: the sea state ``swell stats`` prints, as a dict.
+
+Conventions: SI units (metres, seconds), right-handed, +Y up, water at rest at y = 0. Answers
+depend only on the scene and ``t``, never on earlier calls. Bad input raises ``ValueError`` with
+the message the ``swell`` command line prints after ``error:``; unreadable files raise ``OSError``.
+"""
+
+from ._swell import Water, __version__, render, stats
+
+__all__ = ["Water", "render", "stats", "__version__"]
