@@ -7,6 +7,7 @@ mod presets;
 mod render_settings;
 #[allow(clippy::module_inception)]
 mod scene;
+mod sea_stats;
 mod sky;
 mod terrain_body;
 mod terrain_spec;
@@ -20,6 +21,7 @@ pub use light::{Incident, Light};
 pub use presets::{preset, Preset, PRESETS};
 pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_THREADS};
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
+pub use sea_stats::{sea_stats, SeaStats};
 pub use sky::{Sky, SunDisc};
 pub use terrain_body::TerrainBody;
 pub use terrain_spec::{

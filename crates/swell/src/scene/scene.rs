@@ -19,9 +19,10 @@ pub const MAX_LIGHTS: usize = 16;
 /// every key with its unit, default and range.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
-    /// File-format version; must be [`SCENE_VERSION`].
+    /// File-format version; must be [`SCENE_VERSION`] (the default when a file leaves it out).
     pub version: u32,
-    /// The camera.
+    /// The camera; [`Camera::default`] when a file has no `[camera]` (a water-only scene for a
+    /// bake, an export or `swell stats`, which need none).
     pub camera: Camera,
     /// Light sources, 0 to [`MAX_LIGHTS`]; `[[light]]` in the file.
     pub lights: Vec<Light>,
@@ -39,7 +40,9 @@ pub struct Scene {
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
+    #[serde(default = "current_version")]
     version: u32,
+    #[serde(default)]
     camera: Camera,
     #[serde(default, rename = "light")]
     lights: Vec<Light>,
@@ -47,6 +50,11 @@ struct SceneFile {
     sky: Sky,
     #[serde(default)]
     render: RenderSettings,
+}
+
+/// `version` when a file leaves it out: the current one.
+fn current_version() -> u32 {
+    SCENE_VERSION
 }
 
 impl Scene {

@@ -79,6 +79,10 @@ pub struct FftOceanParams {
     pub seed: u32,
     /// Number of patches of decreasing size summed to hide tiling, in [1, 4]. Default 1.
     pub cascades: u32,
+    /// Whether the cascades' patches divide the first one (sides `L / {1, 4, 19, 83}` instead of
+    /// `L / 4.36^c`), so the whole sea repeats over `patch_size` and baked maps can tile. Default
+    /// false.
+    pub tile_cascades: bool,
     /// Loop period T, s, in [1, 100000]: the sea repeats exactly after T. Absent: no loop.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub loop_period: Option<f32>,
@@ -117,6 +121,7 @@ impl Default for FftOceanParams {
             small_wave_cutoff: 0.0,
             seed: 0,
             cascades: 1,
+            tile_cascades: false,
             loop_period: None,
             foam: true,
             foam_threshold: 0.75,
@@ -190,10 +195,10 @@ impl FftOceanParams {
             }
             SpectrumKind::PiersonMoskowitz => WindSea::PiersonMoskowitz(PiersonMoskowitz::from_u10(u10)),
             SpectrumKind::Jonswap => WindSea::Jonswap(Jonswap::from_wind(u10, fetch, gamma)),
-            SpectrumKind::Tma => WindSea::Tma(Tma {
-                jonswap: Jonswap::from_wind(u10, fetch, gamma),
-                depth: depth.expect("validate() requires depth for tma"),
-            }),
+            SpectrumKind::Tma => WindSea::Tma(Tma::new(
+                Jonswap::from_wind(u10, fetch, gamma),
+                depth.expect("validate() requires depth for tma"),
+            )),
         };
         DirectionalSpectrum {
             wind_sea,

@@ -1,0 +1,82 @@
+//! The sea state a spectral scene realises (`swell stats`): the spectrum's expectations beside the
+//! statistics of the very field a bake or an export of the scene writes.
+
+use serde::Serialize;
+
+use super::{Scene, WaterModelSpec};
+use crate::error::{Error, Result};
+use crate::mesh::SurfaceMesh;
+use crate::water::{FftOcean, WaveModel};
+
+/// What `swell stats` reports (JSON keys as named).
+///
+/// The realised statistics (`hs_realised_m`, heights, `foam_coverage`) are taken over the scene's
+/// water grid (`[water] size` and `cells`), displaced exactly as `swell bake` and `swell export`
+/// displace it at that time, all cascades summed: what the maps hold, not the FFT grid alone.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SeaStats {
+    /// Time of the field, s.
+    pub time_s: f64,
+    /// Significant height `4 sqrt(var(y))` of the displaced grid's heights, m.
+    pub hs_realised_m: f64,
+    /// The spectrum's own expectation `4 sqrt(m0)` over the wave vectors the cascades hold, m.
+    pub hs_expected_m: f64,
+    /// Peak period of the sea's spectrum, s (for TMA, the peak of the finite-depth spectrum).
+    pub peak_period_s: f64,
+    /// Mean height of the displaced grid, m.
+    pub mean_height_m: f64,
+    /// Lowest height of the displaced grid, m.
+    pub min_height_m: f64,
+    /// Highest height of the displaced grid, m.
+    pub max_height_m: f64,
+    /// Mean foam coverage of the grid's vertices in [0, 1] (the baked foam map's mean).
+    pub foam_coverage: f64,
+    /// FFT grid side N, as built (with `[water.blender]`, from Blender's keys).
+    pub grid: u32,
+    /// Side of the first cascade's patch, m, as built.
+    pub patch_size_m: f32,
+    /// Number of cascades.
+    pub cascades: u32,
+    /// Size of the water grid the statistics are over, m (x, z).
+    pub surface_size_m: [f32; 2],
+    /// Cells of that grid (x, z).
+    pub surface_cells: [u32; 2],
+}
+
+/// The sea state of `scene`'s FFT ocean at time `t` (s): the error names `water.model` when the
+/// scene has no spectral sea.
+pub fn sea_stats(scene: &Scene, t: f64) -> Result<SeaStats> {
+    if !t.is_finite() {
+        return Err(Error::out_of_range("time", t, "finite seconds"));
+    }
+    let water = scene.water.as_ref().ok_or_else(|| Error::invalid("water", "the scene has no [water] table"))?;
+    let WaterModelSpec::Fft(params) = &water.model else {
+        return Err(Error::invalid("water.model", "swell stats needs a spectral sea: model = \"fft\""));
+    };
+    let mut ocean = FftOcean::new(params)?;
+    ocean.advance(t)?;
+    let grid = water.surface.grid()?;
+    let mut mesh = SurfaceMesh::new(grid);
+    mesh.displace(&ocean, t);
+    let count = mesh.positions.len() as f64;
+    let heights = || mesh.positions.iter().map(|p| f64::from(p.y));
+    let mean = heights().sum::<f64>() / count;
+    let variance = heights().map(|h| (h - mean).powi(2)).sum::<f64>() / count;
+    let foam = if mesh.has_foam { mesh.foam.iter().map(|&f| f64::from(f)).sum::<f64>() / count } else { 0.0 };
+    let state = ocean.sea_state();
+    Ok(SeaStats {
+        time_s: t,
+        hs_realised_m: 4.0 * variance.sqrt(),
+        hs_expected_m: state.hs_expected,
+        peak_period_s: state.peak_period,
+        mean_height_m: mean,
+        min_height_m: heights().fold(f64::INFINITY, f64::min),
+        max_height_m: heights().fold(f64::NEG_INFINITY, f64::max),
+        foam_coverage: foam,
+        grid: ocean.params().grid,
+        patch_size_m: ocean.params().patch_size,
+        cascades: ocean.params().cascades,
+        surface_size_m: grid.size.to_array(),
+        surface_cells: [grid.cells_x, grid.cells_z],
+    })
+}
