@@ -64,6 +64,14 @@ impl Scene {
         crate::limits::check_scene_text(text, source)?;
         let mut table: toml::Table = toml::from_str(text)
             .map_err(|e| Error::Parse { path: source.into(), message: e.to_string().trim_end().into() })?;
+        if !table.values().any(|v| v.is_table() || v.is_array()) {
+            // Every table has a default, but a file with none is a mistake (a wrong path, an
+            // emptied file), not a request for an empty sky.
+            return Err(Error::Parse {
+                path: source.into(),
+                message: "the scene is empty: give at least one table, such as [water] or [terrain]".into(),
+            });
+        }
         let water = match table.remove("water") {
             Some(toml::Value::Table(t)) => Some(WaterSpec::from_table(t, source)?),
             Some(other) => {
@@ -177,6 +185,17 @@ mod tests {
         assert_eq!(s.render.width, 1280);
         assert!(s.water.is_none());
         assert_eq!(s.camera.fov_y_deg, 45.0);
+    }
+
+    #[test]
+    fn a_water_only_scene_parses_and_an_empty_one_is_refused() {
+        let s = Scene::from_toml("[water]\nmodel = 'fft'\n", "t").unwrap();
+        assert_eq!((s.version, s.camera), (SCENE_VERSION, Camera::default()));
+        assert!(s.water.is_some());
+        for text in ["# nothing\n", "version = 1\n"] {
+            let e = Scene::from_toml(text, "empty.toml").unwrap_err().to_string();
+            assert!(e.starts_with("empty.toml: the scene is empty"), "{e}");
+        }
     }
 
     #[test]
