@@ -80,3 +80,52 @@ pub fn sea_stats(scene: &Scene, t: f64) -> Result<SeaStats> {
         surface_cells: [grid.cells_x, grid.cells_z],
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::World;
+
+    fn scene(extra: &str) -> Scene {
+        let text = format!(
+            "[water]\nmodel = 'fft'\ngrid = 64\npatch_size = 120.0\nsize = [90.0, 70.0]\ncells = [45, 35]\n{extra}"
+        );
+        Scene::from_toml(&text, "t").unwrap()
+    }
+
+    #[test]
+    fn stats_describe_the_field_a_bake_writes_with_every_cascade() {
+        let s = scene("wind_speed = 16.0\ncascades = 3\nchoppiness = 1.3\n");
+        let stats = sea_stats(&s, 9.0).unwrap();
+        let mut world = World::new(s).unwrap();
+        world.update(9.0).unwrap();
+        let mesh = &world.water.as_ref().unwrap().mesh;
+        let n = mesh.positions.len() as f64;
+        let mean = mesh.positions.iter().map(|p| f64::from(p.y)).sum::<f64>() / n;
+        let var = mesh.positions.iter().map(|p| (f64::from(p.y) - mean).powi(2)).sum::<f64>() / n;
+        assert_eq!(stats.hs_realised_m, 4.0 * var.sqrt());
+        assert_eq!(stats.foam_coverage, mesh.foam.iter().map(|&f| f64::from(f)).sum::<f64>() / n);
+        assert!(stats.foam_coverage > 0.0);
+        assert_eq!((stats.surface_size_m, stats.surface_cells, stats.cascades), ([90.0, 70.0], [45, 35], 3));
+    }
+
+    #[test]
+    fn tma_reports_its_own_peak_period() {
+        let deep = sea_stats(&scene("spectrum = 'jonswap'\nwind_speed = 14.0\ndepth = 1000.0\n"), 0.0).unwrap();
+        let shallow = sea_stats(&scene("spectrum = 'tma'\nwind_speed = 14.0\ndepth = 3.0\n"), 0.0).unwrap();
+        assert!(
+            shallow.peak_period_s < 0.97 * deep.peak_period_s,
+            "{} vs {}",
+            shallow.peak_period_s,
+            deep.peak_period_s
+        );
+    }
+
+    #[test]
+    fn a_scene_without_a_spectral_sea_is_refused_by_key() {
+        let e = sea_stats(&crate::scene::preset("sea").unwrap(), 0.0).unwrap_err().to_string();
+        assert!(e.starts_with("water.model"), "{e}");
+        let e = sea_stats(&scene(""), f64::NAN).unwrap_err().to_string();
+        assert!(e.starts_with("time = NaN"), "{e}");
+    }
+}
