@@ -88,10 +88,12 @@ pub struct FftOceanParams {
     pub loop_period: Option<f32>,
     /// Whether to compute foam. Default true.
     pub foam: bool,
-    /// Jacobian below which the surface foams, in [-1, 2]. Default 0.75: with the preset `ocean`
-    /// (U10 = 12 m/s, choppiness 1.2, 1 m cells) it covers about 1.4 % of the sea, near the
-    /// whitecap fraction `3.84e-6 U10^3.41` = 1.8 % observed at that wind (Monahan and
-    /// O'Muircheartaigh 1980). J depends on the grid resolution, so finer grids need a lower value.
+    /// Jacobian below which the surface foams, in [-1, 2]. Default 0.75: with the other keys at
+    /// their defaults (256² over 250 m, JONSWAP, 100 km fetch, choppiness 1, 2 s fade) the steady
+    /// whitecap coverage follows the coverage observed against wind speed, `3.84e-6 U10^3.41`
+    /// (Monahan and O'Muircheartaigh 1980), within a factor of two from 8 to 20 m/s (tested:
+    /// 0.65 % at 8 m/s, 1.4 % at 12, 6.0 % at 20, against 0.46, 1.8 and 10.5 %). J depends on the
+    /// grid resolution, so finer grids need a lower value.
     pub foam_threshold: f32,
     /// Time constant (s) over which foam fades once the crest has passed, in [0, 60]; 0 keeps no
     /// foam from one frame to the next. Default 2.
