@@ -15,7 +15,7 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
 use swell::render::Renderer;
-use swell::scene::{Scene, SeaStats, World, MAX_IMAGE_SIDE};
+use swell::scene::{sea_stats, Scene, World, MAX_IMAGE_SIDE};
 
 /// The name scene texts are known by in error messages (the C API's too).
 const SOURCE: &str = "toml";
@@ -255,7 +255,10 @@ fn render<'py>(
 #[pyo3(signature = (text, t=0.0))]
 fn stats<'py>(py: Python<'py>, text: &str, t: f64) -> PyResult<Bound<'py, PyDict>> {
     let json = py
-        .allow_threads(|| -> swell::Result<String> { Ok(SeaStats::of_scene(&Scene::from_toml(text, SOURCE)?, t)?.to_json()) })
+        .allow_threads(|| -> swell::Result<String> {
+            let stats = sea_stats(&Scene::from_toml(text, SOURCE)?, t)?;
+            Ok(serde_json::to_string_pretty(&stats).expect("plain JSON values"))
+        })
         .map_err(py_err)?;
     Ok(py.import("json")?.call_method1("loads", (json,))?.downcast_into::<PyDict>()?)
 }

@@ -185,11 +185,13 @@ def test_render_gives_the_cli_png_pixels(tmp_path):
     assert swell.render(OCEAN).shape == (90, 160, 3)
 
 
-def test_stats_are_the_cli_s():
+def test_stats_are_the_cli_s(tmp_path):
     ours = swell.stats(OCEAN, t=1.5)
-    assert ours["hs_realised_m"] > 0
-    theirs = json.loads(run_cli("stats", "--preset", "ocean", "--time", "1.5").stdout)
-    assert ours == theirs  # same spectrum and grid: the cell count does not enter the stats
+    assert ours["hs_realised_m"] > 0 and ours["surface_cells"] == [48, 48]
+    scene = tmp_path / "ocean.toml"
+    scene.write_text(OCEAN)
+    theirs = json.loads(run_cli("stats", "--scene", str(scene), "--time", "1.5").stdout)
+    assert ours == theirs
 
 
 STEEP = CAMERA + "[water]\nmodel = 'gerstner'\n[[water.waves]]\namplitude = 1.0\nwavelength = 10.0\nspeed = 3.0\ndirection = [1.0, 0.0]\nsteepness = 1.7\n"

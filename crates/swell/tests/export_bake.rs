@@ -443,20 +443,155 @@ fn models_with_foam_get_foam_maps() {
     }
 }
 
+/// A water-only scene (no camera, no lights): a rough FFT ocean with foam whose 48 m grid of 48
+/// cells is exactly its patch, so its maps can tile.
+const FOAMY_OCEAN: &str = r#"
+[water]
+model = "fft"
+grid = 64
+patch_size = 48.0
+wind_speed = 20.0
+choppiness = 1.5
+size = [48.0, 48.0]
+cells = [48, 48]
+"#;
+
 #[test]
 fn tiled_maps_leave_out_the_repeated_last_column_and_row() {
     let (full, tiled) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
     let s = BakeSettings::new(FrameRange::new("f", 2, 2).unwrap());
-    bake(SEA, full.path(), s.clone());
-    let m = bake(SEA, tiled.path(), BakeSettings { tile: true, ..s });
-    assert_eq!((m.grid.pixels, m.grid.tile), ([24, 16], true));
+    bake(FOAMY_OCEAN, full.path(), s.clone());
+    let m = bake(FOAMY_OCEAN, tiled.path(), BakeSettings { tile: true, ..s });
+    assert_eq!((m.grid.pixels, m.grid.tile), ([48, 48], true));
     for map in ["disp", "normal"] {
         let (w, h, a) = read_exr_rgb(&full.path().join(format!("{map}_0002.exr")));
         let (tw, th, b) = read_exr_rgb(&tiled.path().join(format!("{map}_0002.exr")));
         assert_eq!((w - 1, h - 1), (tw, th));
         let cropped: Vec<Vec3> = (0..th).flat_map(|j| a[j * w..j * w + tw].to_vec()).collect();
         assert_eq!(cropped, b, "{map}");
+        // The dropped last column and row repeat the first: the tile is seamless.
+        for j in 0..h {
+            assert!((a[j * w + w - 1] - a[j * w]).length() < 1e-5, "{map} row {j}");
+        }
     }
+}
+
+#[test]
+fn tile_is_refused_for_water_that_does_not_repeat_over_the_bake() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (SEA.to_string(), "does not repeat in space"),
+        (FOAMY_OCEAN.replace("size = [48.0, 48.0]", "size = [40.0, 48.0]"), "40 m along x"),
+        (format!("{FOAMY_OCEAN}cascades = 2\n"), "does not repeat in space"),
+    ];
+    for (text, reason) in cases {
+        let mut w = World::new(Scene::from_toml(&text, "test").unwrap()).unwrap();
+        let s = BakeSettings { tile: true, ..BakeSettings::new(FrameRange::new("f", 0, 1).unwrap()) };
+        let e = Bake::prepare(&mut w, dir.path(), s).err().unwrap().to_string();
+        assert!(e.starts_with("--tile") && e.contains(reason), "{e}");
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+    // Cascades whose patches divide the first tile when asked to.
+    let tiling = format!("{FOAMY_OCEAN}cascades = 3\ntile_cascades = true\n");
+    let m = bake(
+        &tiling,
+        dir.path(),
+        BakeSettings { tile: true, ..BakeSettings::new(FrameRange::new("f", 0, 0).unwrap()) },
+    );
+    assert_eq!(m.grid.pixels, [48, 48]);
+    let (w, h, a) = read_exr_rgb(&dir.path().join("disp_0000.exr"));
+    assert_eq!((w, h), (48, 48));
+    assert!(a.iter().all(|d| d.is_finite()));
+}
+
+/// Every map file of `frame` in `dir`, as bytes.
+fn frame_bytes(dir: &Path, frame: u32) -> Vec<(String, Vec<u8>)> {
+    ["disp", "normal", "foam"]
+        .iter()
+        .map(|m| {
+            let name = format!("{m}_{frame:04}.exr");
+            let bytes = std::fs::read(dir.join(&name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+            (name, bytes)
+        })
+        .collect()
+}
+
+#[test]
+fn shards_resumes_single_frames_and_stills_give_the_sequential_bake_foam_included() {
+    let range = || FrameRange::new("f", 0, 60).unwrap();
+    let sequential = tempfile::tempdir().unwrap();
+    let m = bake(FOAMY_OCEAN, sequential.path(), BakeSettings::new(range()));
+    assert_eq!(m.maps.len(), 3, "the ocean has foam");
+    let foam = read_exr_y(&sequential.path().join("foam_0060.exr"));
+    assert!(foam.iter().sum::<f32>() / foam.len() as f32 > 1e-3, "the case must have foam");
+
+    // Shards into one directory.
+    let sharded = tempfile::tempdir().unwrap();
+    for i in [2, 0, 1] {
+        let shard = swell::export::Shard::parse("shard", &format!("{i}/3")).unwrap();
+        bake(FOAMY_OCEAN, sharded.path(), BakeSettings { shard, ..BakeSettings::new(range()) });
+    }
+    // A bake interrupted after frame 20 (the later frames' files lost), then resumed.
+    let resumed = tempfile::tempdir().unwrap();
+    bake(FOAMY_OCEAN, resumed.path(), BakeSettings::new(range()));
+    for frame in 21..=60u32 {
+        for (name, _) in frame_bytes(resumed.path(), frame) {
+            std::fs::remove_file(resumed.path().join(name)).unwrap();
+        }
+    }
+    bake(FOAMY_OCEAN, resumed.path(), BakeSettings { resume: true, ..BakeSettings::new(range()) });
+    // One frame alone, and a bake that starts mid-range.
+    let single = tempfile::tempdir().unwrap();
+    bake(FOAMY_OCEAN, single.path(), BakeSettings::new(FrameRange::new("f", 47, 47).unwrap()));
+    let mid = tempfile::tempdir().unwrap();
+    bake(FOAMY_OCEAN, mid.path(), BakeSettings::new(FrameRange::new("f", 40, 60).unwrap()));
+    for frame in [0, 1, 21, 40, 47, 59, 60] {
+        let want = frame_bytes(sequential.path(), frame);
+        assert!(frame_bytes(sharded.path(), frame) == want, "shards, frame {frame}");
+        assert!(frame_bytes(resumed.path(), frame) == want, "resumed, frame {frame}");
+        if frame == 47 {
+            assert!(frame_bytes(single.path(), frame) == want, "single frame {frame}");
+        }
+        if frame >= 40 {
+            assert!(frame_bytes(mid.path(), frame) == want, "mid-range, frame {frame}");
+        }
+    }
+    // A still (a world built and moved straight to the frame's time) has the baked foam.
+    let still = world(FOAMY_OCEAN, 47.0 / 24.0);
+    assert_eq!(mesh_of(&still).foam, read_exr_y(&sequential.path().join("foam_0047.exr")));
+}
+
+#[test]
+fn an_fft_loop_closes_in_every_map_foam_included() {
+    // A 2 s loop at 24 fps: frame 48 is frame 0 again, byte for byte.
+    let looping = format!("{FOAMY_OCEAN}loop_period = 2.0\n");
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = BakeSettings::new(FrameRange::new("f", 0, 48).unwrap());
+    s.loop_period_s = Some(2.0);
+    let m = bake(&looping, dir.path(), s);
+    assert_eq!(m.loop_frames, Some(48));
+    for ((name, a), (_, b)) in frame_bytes(dir.path(), 48).into_iter().zip(frame_bytes(dir.path(), 0)) {
+        assert!(a == b, "{name} differs from frame 0's");
+    }
+    let bytes = |frame| frame_bytes(dir.path(), frame).into_iter().map(|(_, b)| b).collect::<Vec<_>>();
+    assert!(bytes(24)[2] != bytes(0)[2], "half a loop on, the foam differs");
+}
+
+#[test]
+fn a_short_loop_keeps_the_long_waves_moving() {
+    // Paper 003's floor() froze every wave longer than the loop: a 2 s loop on this 20 m/s sea
+    // (peak period about 11 s) stood nearly still. Rounded to the nearest non-zero multiple, the
+    // sea moves from frame to frame about as much as the sea without a loop.
+    let change = |text: &str| {
+        let (_, a, _) = model_fields(text, 3.0);
+        let (_, b, _) = model_fields(text, 3.0 + 1.0 / 24.0);
+        (a.iter().zip(&b).map(|(p, q)| f64::from(p.y - q.y).powi(2)).sum::<f64>() / a.len() as f64).sqrt()
+    };
+    let unlooped = change(FOAMY_OCEAN);
+    let looped = change(&format!("{FOAMY_OCEAN}loop_period = 2.0\n"));
+    // Comparable, not equal: at 2 s every frequency is a multiple of π rad/s, and this small
+    // patch's waves (periods up to 5.5 s) all speed up to at least that.
+    assert!(looped > 0.5 * unlooped && looped < 3.0 * unlooped, "{looped} vs {unlooped}");
 }
 
 #[test]

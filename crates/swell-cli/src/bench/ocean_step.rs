@@ -88,7 +88,7 @@ const STAGES: [&str; 5] = [
     "simulation (evolve + FFTs + foam)",
     "evolve h(k, t), bases, FFTs over kz (column pass)",
     "FFTs over kx, gathering the bases into pairs, foam (row pass)",
-    "foam alone (0: fused into the row pass)",
+    "foam lattice (the first cascade at the 20 Hz foam times; 0 in most steps)",
     "displaced mesh (positions, normals, foam)",
 ];
 
@@ -157,7 +157,9 @@ pub fn ocean_experiment(ctx: &Context) -> Result<Report> {
              come from the same runs; the spread is over steps. Since session 3 the step is two fused passes: \
              `evolve_ms` times the column pass (evolution, the five bases, transforms over kz), `fft_ms` the row \
              pass (gathering the bases into the packed pairs, transforms over kx, Jacobian and foam), and \
-             `foam_ms` is 0."
+             `foam_ms` the foam lattice's steps (since session 6 the foam is defined by time alone: the first \
+             cascade is also synthesised every 0.05 s of simulated time, so one step in three at 60 steps/s \
+             carries one more first-cascade step; the medians are of the steps without it)."
                 .into(),
         ],
         x_label: "grid".into(),

@@ -29,8 +29,18 @@ pub fn run(cli: Cli) -> Result<()> {
     }
 }
 
-/// Loads the scene named by `--preset` or `--scene`.
+/// Loads the scene named by `--preset` or `--scene`, printing on stderr what the scene asks for
+/// but will not get exactly (a loop period too short for the sea).
 pub fn load_scene(source: &SceneSource) -> Result<Scene> {
+    let scene = read_scene(source)?;
+    if let Some(warning) = scene.water.as_ref().and_then(|w| w.model.loop_warning()) {
+        eprintln!("warning: {warning}");
+    }
+    Ok(scene)
+}
+
+/// Reads and validates the scene named by `--preset` or `--scene`.
+fn read_scene(source: &SceneSource) -> Result<Scene> {
     match (&source.preset, &source.scene) {
         (Some(name), _) => preset(name),
         (None, Some(path)) => {

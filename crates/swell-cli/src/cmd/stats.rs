@@ -1,6 +1,6 @@
-//! `swell stats`: the sea state a spectral scene realises, as JSON ([`swell::scene::SeaStats`]).
+//! `swell stats`: the sea state a spectral scene realises, as JSON ([`swell::scene::sea_stats`]).
 
-use swell::scene::SeaStats;
+use swell::scene::sea_stats;
 use swell::{Error, Result};
 
 use super::load_scene;
@@ -11,6 +11,7 @@ pub fn run(a: StatsArgs) -> Result<()> {
         return Err(Error::out_of_range("--time", a.time, "finite seconds"));
     }
     let scene = load_scene(&a.source)?;
-    println!("{}", SeaStats::of_scene(&scene, a.time)?.to_json());
+    let stats = sea_stats(&scene, a.time)?;
+    println!("{}", serde_json::to_string_pretty(&stats).expect("plain JSON values"));
     Ok(())
 }

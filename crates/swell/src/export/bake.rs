@@ -212,6 +212,9 @@ impl Bake {
         world.update(f64::from(settings.frames.first) / settings.fps)?;
         let water = world.water.as_ref().expect("a scene with [water] builds a water body");
         let grid = water.mesh.grid;
+        if settings.tile {
+            check_tiles(water.model.spatial_period(), &grid)?;
+        }
         let mut maps = vec![MapKind::Disp, MapKind::Normal];
         if water.mesh.has_foam {
             maps.push(MapKind::Foam);
@@ -379,6 +382,32 @@ impl Bake {
             MapKind::Foam => write_png_map(path, w, h, 1, bits, &f.foam),
         }
     }
+}
+
+/// Refuses `--tile` unless the water repeats over the bake's extent: its spatial period (m, if it
+/// has one) must go a whole number of times into the grid's size along both axes, so the maps'
+/// last column and row would repeat the first.
+fn check_tiles(period: Option<f32>, grid: &GridSpec) -> Result<()> {
+    let Some(p) = period else {
+        return Err(Error::invalid(
+            "--tile",
+            "this water does not repeat in space, so its maps cannot tile; only an FFT ocean does (with one \
+             cascade, or tile_cascades = true), over its patch_size",
+        ));
+    };
+    for (axis, size) in [("x", grid.size.x), ("z", grid.size.y)] {
+        let periods = f64::from(size) / f64::from(p);
+        if periods.round() < 1.0 || (periods - periods.round()).abs() > 1e-5 * periods {
+            return Err(Error::invalid(
+                "--tile",
+                format!(
+                    "the water repeats every {p} m but the bake's grid is {size} m along {axis} ({periods:.4} \
+                     periods); set water.size to a whole multiple of {p} m"
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Map width and height in pixels: vertices per side, or cells per side when `tile`.

@@ -27,6 +27,21 @@ pub struct Camera {
     pub far: f32,
 }
 
+/// The camera of a scene without `[camera]`: 25 m up and 60 m back (+Z) from the origin, looking at
+/// it, with the other keys at their defaults. Enough to see a sea patch of a few hundred metres.
+impl Default for Camera {
+    fn default() -> Self {
+        Self {
+            eye: Vec3::new(0.0, 25.0, 60.0),
+            target: Vec3::ZERO,
+            up: default_up(),
+            fov_y_deg: default_fov(),
+            near: default_near(),
+            far: default_far(),
+        }
+    }
+}
+
 fn default_up() -> Vec3 {
     Vec3::Y
 }

@@ -22,7 +22,7 @@ pub use light::{Incident, Light};
 pub use presets::{preset, Preset, PRESETS};
 pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_THREADS};
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
-pub use sea_stats::SeaStats;
+pub use sea_stats::{sea_stats, SeaStats};
 pub use sky::{Sky, SunDisc};
 pub use terrain_body::TerrainBody;
 pub use terrain_spec::{

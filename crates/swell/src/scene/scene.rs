@@ -19,9 +19,10 @@ pub const MAX_LIGHTS: usize = 16;
 /// every key with its unit, default and range.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
-    /// File-format version; must be [`SCENE_VERSION`].
+    /// File-format version; must be [`SCENE_VERSION`] (the default when a file leaves it out).
     pub version: u32,
-    /// The camera.
+    /// The camera; [`Camera::default`] when a file has no `[camera]` (a water-only scene for a
+    /// bake, an export or `swell stats`, which need none).
     pub camera: Camera,
     /// Light sources, 0 to [`MAX_LIGHTS`]; `[[light]]` in the file.
     pub lights: Vec<Light>,
@@ -39,7 +40,9 @@ pub struct Scene {
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
+    #[serde(default = "current_version")]
     version: u32,
+    #[serde(default)]
     camera: Camera,
     #[serde(default, rename = "light")]
     lights: Vec<Light>,
@@ -49,6 +52,11 @@ struct SceneFile {
     render: RenderSettings,
 }
 
+/// `version` when a file leaves it out: the current one.
+fn current_version() -> u32 {
+    SCENE_VERSION
+}
+
 impl Scene {
     /// Parses and validates a scene; `source` (a path or `preset NAME`) is named in errors.
     pub fn from_toml(text: &str, source: &str) -> Result<Self> {
@@ -56,6 +64,14 @@ impl Scene {
         crate::limits::check_scene_text(text, source)?;
         let mut table: toml::Table = toml::from_str(text)
             .map_err(|e| Error::Parse { path: source.into(), message: e.to_string().trim_end().into() })?;
+        if !table.values().any(|v| v.is_table() || v.is_array()) {
+            // Every table has a default, but a file with none is a mistake (a wrong path, an
+            // emptied file), not a request for an empty sky.
+            return Err(Error::Parse {
+                path: source.into(),
+                message: "the scene is empty: give at least one table, such as [water] or [terrain]".into(),
+            });
+        }
         let water = match table.remove("water") {
             Some(toml::Value::Table(t)) => Some(WaterSpec::from_table(t, source)?),
             Some(other) => {
@@ -169,6 +185,17 @@ mod tests {
         assert_eq!(s.render.width, 1280);
         assert!(s.water.is_none());
         assert_eq!(s.camera.fov_y_deg, 45.0);
+    }
+
+    #[test]
+    fn a_water_only_scene_parses_and_an_empty_one_is_refused() {
+        let s = Scene::from_toml("[water]\nmodel = 'fft'\n", "t").unwrap();
+        assert_eq!((s.version, s.camera), (SCENE_VERSION, Camera::default()));
+        assert!(s.water.is_some());
+        for text in ["# nothing\n", "version = 1\n"] {
+            let e = Scene::from_toml(text, "empty.toml").unwrap_err().to_string();
+            assert!(e.starts_with("empty.toml: the scene is empty"), "{e}");
+        }
     }
 
     #[test]

@@ -1,87 +1,131 @@
-//! The sea state a spectral scene realises at a time: what `swell stats` prints, for every
-//! front end (CLI, C, Python) from one place.
+//! The sea state a spectral scene realises (`swell stats`): the spectrum's expectations beside the
+//! statistics of the very field a bake or an export of the scene writes.
 
 use serde::Serialize;
 
 use super::{Scene, WaterModelSpec};
 use crate::error::{Error, Result};
+use crate::mesh::SurfaceMesh;
 use crate::water::{FftOcean, WaveModel};
 
-/// The sea state of a scene's FFT ocean at one time, with the JSON keys of `swell stats`.
+/// What `swell stats` reports (JSON keys as named).
+///
+/// The realised statistics (`hs_realised_m`, heights, `foam_coverage`) are taken over the scene's
+/// water grid (`[water] size` and `cells`), displaced exactly as `swell bake` and `swell export`
+/// displace it at that time, all cascades summed: what the maps hold, not the FFT grid alone.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SeaStats {
-    /// Time of the fields, s.
+    /// Time of the field, s.
     pub time_s: f64,
-    /// Significant height `4 sqrt(var(h))` realised on the grid, m.
+    /// Significant height `4 sqrt(var(y))` of the displaced grid's heights, m.
     pub hs_realised_m: f64,
-    /// The spectrum's expectation `4 sqrt(m0)` over the grid's wave vectors, m.
+    /// The spectrum's own expectation `4 sqrt(m0)` over the wave vectors the cascades hold, m.
     pub hs_expected_m: f64,
-    /// Peak period of the spectrum, s.
+    /// Peak period of the sea's spectrum, s (for TMA, the peak of the finite-depth spectrum).
     pub peak_period_s: f64,
-    /// Mean height, m.
+    /// Mean height of the displaced grid, m.
     pub mean_height_m: f64,
-    /// Lowest height on the grid, m.
+    /// Lowest height of the displaced grid, m.
     pub min_height_m: f64,
-    /// Highest height on the grid, m.
+    /// Highest height of the displaced grid, m.
     pub max_height_m: f64,
-    /// Mean foam coverage in [0, 1].
+    /// Mean foam coverage of the grid's vertices in [0, 1] (the baked foam map's mean).
     pub foam_coverage: f64,
-    /// FFT grid side as built (with `[water.blender]`, from Blender's keys), samples.
+    /// FFT grid side N, as built (with `[water.blender]`, from Blender's keys).
     pub grid: u32,
-    /// Patch side as built, m.
+    /// Side of the first cascade's patch, m, as built.
     pub patch_size_m: f32,
-    /// Cascades as built.
+    /// Number of cascades.
     pub cascades: u32,
+    /// Size of the water grid the statistics are over, m (x, z).
+    pub surface_size_m: [f32; 2],
+    /// Cells of that grid (x, z).
+    pub surface_cells: [u32; 2],
 }
 
-impl SeaStats {
-    /// The sea state of `scene`'s FFT ocean at time `t` (s, finite). An error names `water.model`
-    /// when the scene has no spectral sea (`model = "fft"`), and `t` when it is not finite.
-    pub fn of_scene(scene: &Scene, t: f64) -> Result<Self> {
-        if !t.is_finite() {
-            return Err(Error::out_of_range("t", t, "finite seconds"));
-        }
-        let params = match scene.water.as_ref().map(|w| &w.model) {
-            Some(WaterModelSpec::Fft(p)) => p,
-            _ => return Err(Error::invalid("water.model", "swell stats needs a spectral sea: model = \"fft\"")),
-        };
-        let mut ocean = FftOcean::new(params)?;
-        ocean.advance(t)?;
-        let s = ocean.sea_state();
-        let built = ocean.params();
-        Ok(Self {
-            time_s: s.time,
-            hs_realised_m: s.hs_realised,
-            hs_expected_m: s.hs_expected,
-            peak_period_s: s.peak_period,
-            mean_height_m: s.mean_height,
-            min_height_m: s.min_height,
-            max_height_m: s.max_height,
-            foam_coverage: s.foam_coverage,
-            grid: built.grid,
-            patch_size_m: built.patch_size,
-            cascades: built.cascades,
-        })
+/// The sea state of `scene`'s FFT ocean at time `t` (s): the error names `water.model` when the
+/// scene has no spectral sea.
+pub fn sea_stats(scene: &Scene, t: f64) -> Result<SeaStats> {
+    if !t.is_finite() {
+        return Err(Error::out_of_range("time", t, "finite seconds"));
     }
-
-    /// Pretty-printed JSON, exactly what `swell stats` prints.
-    pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).expect("plain JSON values")
-    }
+    let water = scene.water.as_ref().ok_or_else(|| Error::invalid("water", "the scene has no [water] table"))?;
+    let WaterModelSpec::Fft(params) = &water.model else {
+        return Err(Error::invalid("water.model", "swell stats needs a spectral sea: model = \"fft\""));
+    };
+    let mut ocean = FftOcean::new(params)?;
+    ocean.advance(t)?;
+    let grid = water.surface.grid()?;
+    let mut mesh = SurfaceMesh::new(grid);
+    mesh.displace(&ocean, t);
+    let count = mesh.positions.len() as f64;
+    let heights = || mesh.positions.iter().map(|p| f64::from(p.y));
+    let mean = heights().sum::<f64>() / count;
+    let variance = heights().map(|h| (h - mean).powi(2)).sum::<f64>() / count;
+    let foam = if mesh.has_foam { mesh.foam.iter().map(|&f| f64::from(f)).sum::<f64>() / count } else { 0.0 };
+    let state = ocean.sea_state();
+    Ok(SeaStats {
+        time_s: t,
+        hs_realised_m: 4.0 * variance.sqrt(),
+        hs_expected_m: state.hs_expected,
+        peak_period_s: state.peak_period,
+        mean_height_m: mean,
+        min_height_m: heights().fold(f64::INFINITY, f64::min),
+        max_height_m: heights().fold(f64::NEG_INFINITY, f64::max),
+        foam_coverage: foam,
+        grid: ocean.params().grid,
+        patch_size_m: ocean.params().patch_size,
+        cascades: ocean.params().cascades,
+        surface_size_m: grid.size.to_array(),
+        surface_cells: [grid.cells_x, grid.cells_z],
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::World;
+
+    fn scene(extra: &str) -> Scene {
+        let text = format!(
+            "[water]\nmodel = 'fft'\ngrid = 64\npatch_size = 120.0\nsize = [90.0, 70.0]\ncells = [45, 35]\n{extra}"
+        );
+        Scene::from_toml(&text, "t").unwrap()
+    }
 
     #[test]
-    fn the_ocean_preset_has_stats_and_the_sea_preset_is_refused() {
-        let s = SeaStats::of_scene(&crate::scene::preset("ocean").unwrap(), 2.5).unwrap();
-        assert_eq!(s.time_s, 2.5);
-        assert!(s.hs_realised_m > 0.0 && s.min_height_m < 0.0 && s.max_height_m > 0.0);
-        let v: serde_json::Value = serde_json::from_str(&s.to_json()).unwrap();
-        assert_eq!(v["grid"], s.grid);
-        let e = SeaStats::of_scene(&crate::scene::preset("sea").unwrap(), 0.0).unwrap_err();
-        assert_eq!(e.to_string(), "water.model: swell stats needs a spectral sea: model = \"fft\"");
+    fn stats_describe_the_field_a_bake_writes_with_every_cascade() {
+        let s = scene("wind_speed = 16.0\ncascades = 3\nchoppiness = 1.3\n");
+        let stats = sea_stats(&s, 9.0).unwrap();
+        let mut world = World::new(s).unwrap();
+        world.update(9.0).unwrap();
+        let mesh = &world.water.as_ref().unwrap().mesh;
+        let n = mesh.positions.len() as f64;
+        let mean = mesh.positions.iter().map(|p| f64::from(p.y)).sum::<f64>() / n;
+        let var = mesh.positions.iter().map(|p| (f64::from(p.y) - mean).powi(2)).sum::<f64>() / n;
+        assert_eq!(stats.hs_realised_m, 4.0 * var.sqrt());
+        assert_eq!(stats.foam_coverage, mesh.foam.iter().map(|&f| f64::from(f)).sum::<f64>() / n);
+        assert!(stats.foam_coverage > 0.0);
+        assert_eq!((stats.surface_size_m, stats.surface_cells, stats.cascades), ([90.0, 70.0], [45, 35], 3));
+    }
+
+    #[test]
+    fn tma_reports_its_own_peak_period() {
+        let deep = sea_stats(&scene("spectrum = 'jonswap'\nwind_speed = 14.0\ndepth = 1000.0\n"), 0.0).unwrap();
+        let shallow = sea_stats(&scene("spectrum = 'tma'\nwind_speed = 14.0\ndepth = 3.0\n"), 0.0).unwrap();
+        assert!(
+            shallow.peak_period_s < 0.99 * deep.peak_period_s,
+            "{} vs {}",
+            shallow.peak_period_s,
+            deep.peak_period_s
+        );
+    }
+
+    #[test]
+    fn a_scene_without_a_spectral_sea_is_refused_by_key() {
+        let e = sea_stats(&crate::scene::preset("sea").unwrap(), 0.0).unwrap_err().to_string();
+        assert!(e.starts_with("water.model"), "{e}");
+        let e = sea_stats(&scene(""), f64::NAN).unwrap_err().to_string();
+        assert!(e.starts_with("time = NaN"), "{e}");
     }
 }

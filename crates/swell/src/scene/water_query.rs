@@ -330,7 +330,9 @@ mod tests {
                 let mut h = vec![0.0; pts.len()];
                 w.heights_at(t, &pts, &mut h).unwrap();
                 let (p, n) = grid_of(w, t);
-                (h, p, n)
+                let mut foam = vec![0.0; w.vertex_count()];
+                let has = w.foam(t, &mut foam).unwrap();
+                (h, p, n, has.then_some(foam))
             };
             let mut fresh = Water::from_scene(&scene).unwrap();
             let expected = ask(&mut fresh, 2.0);
@@ -402,7 +404,10 @@ mod tests {
         let no_water = "version = 1\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n";
         let e = Water::from_toml(no_water, "t").unwrap_err().to_string();
         assert!(e.starts_with("water: the scene has no [water] section"), "{e}");
-        let e = Water::from_toml("version = 1\n[water]\nmodel = 'sines'\ncells = [0, 4]\n", "t").unwrap_err();
-        assert!(e.to_string().contains("water.cells[0] = 0") || e.to_string().contains("camera"), "{e}");
+        let e = Water::from_toml("[water]\nmodel = 'sines'\ncells = [0, 4]\n", "t").unwrap_err();
+        assert_eq!(e.to_string(), "water.cells[0] = 0 is outside [1, 4096]");
+        // Only [water] is required.
+        let w = Water::from_toml("[water]\nmodel = 'sines'\ncells = [8, 4]\n", "t").unwrap();
+        assert_eq!((w.rows(), w.cols()), (5, 9));
     }
 }

@@ -22,6 +22,7 @@ use serde::{de::DeserializeOwned, Deserialize, Serialize};
 use super::water_placement::WaterPlacement;
 use crate::error::{check_finite_vec, Error, Result};
 use crate::math::GridSpec;
+use crate::spectrum::LoopFit;
 use crate::water::{
     wave_set, Airy, AiryParams, GerstnerTessendorf, NoiseParams, NoiseWaves, RadialWave, RadialWaveParams, River,
     RiverParams, SpringMesh, SpringMeshParams, SteepSines, SteepSinesParams, TessendorfParams, WaveSetParams,
@@ -150,6 +151,36 @@ impl WaterModelSpec {
         match self {
             WaterModelSpec::Tessendorf(p) => p.loop_period.map(f64::from),
             WaterModelSpec::Fft(p) => p.loop_period.map(f64::from),
+            _ => None,
+        }
+    }
+
+    /// A warning when the loop period is too short for the sea (`spectrum/loop_period.rs`):
+    /// shorter than the sea's period, or changing its energetic frequencies by more than
+    /// [`crate::spectrum::MAX_LOOP_SHIFT`]. `None` without a loop or when the loop fits. Assumes
+    /// the parameters are valid.
+    pub fn loop_warning(&self) -> Option<String> {
+        let key = "water.loop_period";
+        match self {
+            WaterModelSpec::Tessendorf(p) => {
+                let period = f64::from(p.loop_period?);
+                let omegas: Vec<f64> = p
+                    .waves
+                    .iter()
+                    .map(|w| f64::from(p.dispersion.omega(std::f32::consts::TAU / w.wavelength)))
+                    .collect();
+                let longest = omegas.iter().copied().filter(|w| *w > 0.0).fold(f64::INFINITY, f64::min);
+                if !longest.is_finite() {
+                    return None;
+                }
+                LoopFit::new(period, std::f64::consts::TAU / longest, omegas).warning(key)
+            }
+            WaterModelSpec::Fft(p) => {
+                let p = p.resolved();
+                let period = f64::from(p.loop_period?);
+                let spectrum = p.spectrum();
+                LoopFit::for_spectrum(period, std::f64::consts::TAU / spectrum.peak_period()).warning(key)
+            }
             _ => None,
         }
     }

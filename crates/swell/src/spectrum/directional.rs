@@ -39,7 +39,7 @@ impl WindSea {
             WindSea::Phillips(p) => dispersion.omega_f64(p.peak_wavenumber()),
             WindSea::PiersonMoskowitz(p) => p.peak_omega(),
             WindSea::Jonswap(j) => j.peak_omega,
-            WindSea::Tma(t) => t.jonswap.peak_omega,
+            WindSea::Tma(t) => t.peak_omega,
         }
     }
 }

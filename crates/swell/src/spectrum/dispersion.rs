@@ -215,18 +215,6 @@ impl Dispersion {
     }
 }
 
-/// Paper 003 eq. 10 (Tessendorf 2001 §3.3): `w = floor(T w0 / 2 pi) 2 pi / T`, the largest multiple
-/// of the base frequency 2 pi / T not above `omega`, so that every wave, and therefore the whole
-/// surface, repeats exactly after `period` seconds.
-///
-/// Every wave slows by less than one quantum 2 pi / T; a wave slower than that quantum (period
-/// longer than T) freezes (w = 0), so choose T longer than the longest wave's period. `period`
-/// must be > 0 (checked by the callers, which name their key).
-pub fn quantize_to_period(omega: f32, period: f32) -> f32 {
-    let quantum = TAU / f64::from(period);
-    ((f64::from(omega) / quantum).floor() * quantum) as f32
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -275,17 +263,6 @@ mod tests {
         }
         // Deep water: group speed is half the phase speed.
         assert!((Dispersion::Deep.group_speed(0.1) * 2.0 - Dispersion::Deep.phase_speed(0.1)).abs() < 1e-5);
-    }
-
-    #[test]
-    fn quantized_frequencies_are_multiples_of_the_base_frequency() {
-        let period = 20.0;
-        for k in [0.01f32, 0.1, 1.0, 10.0] {
-            let w0 = Dispersion::Deep.omega(k);
-            let w = quantize_to_period(w0, period);
-            let n = f64::from(w) * f64::from(period) / TAU;
-            assert!((n - n.round()).abs() < 1e-4 && w <= w0 && w0 - w < (TAU / 20.0) as f32 + 1e-6);
-        }
     }
 
     #[test]

@@ -11,10 +11,18 @@
 //!
 //! **Fully developed limit.** The fetch laws keep lowering the peak as the fetch grows, past the peak
 //! of a fully developed (Pierson-Moskowitz) sea, which is unphysical: a sea stops growing. swell
-//! clamps the dimensionless fetch where `w_p` reaches Pierson-Moskowitz's peak `0.855 g/U10` (x ≈
-//! 1.7e4, about 170 km at 10 m/s) and says so here; at that fetch α ≈ 0.0089.
+//! clamps the dimensionless fetch where `w_p` reaches Pierson-Moskowitz's peak `0.855 g/U10` (x_full
+//! ≈ 1.7e4, about 170 km at 10 m/s). Clamping alone would leave the fully developed sea about 30 %
+//! higher in Hs than Pierson-Moskowitz's (α = 0.0089 instead of 0.0081, and the peak enhanced by
+//! γ = 3.3), although that *is* the fully developed sea: the JONSWAP fits were made on growing
+//! seas, and the peak enhancement fades as a sea matures (Donelan et al. 1985 measure γ falling
+//! with wave age). So over the last decade of fetch, `x_full / 10 <= x <= x_full`, swell blends
+//! α and γ geometrically from the fetch laws to Pierson-Moskowitz's (α = 0.0081, γ = 1), with a
+//! smoothstep weight in `log x`: at and beyond full development the spectrum *is*
+//! Pierson-Moskowitz's (same shape, since `5/4 w_p⁴ = β w0⁴`), and the sea still grows with fetch
+//! all the way there.
 
-use super::pierson_moskowitz::PiersonMoskowitz;
+use super::pierson_moskowitz::{PiersonMoskowitz, PM_ALPHA};
 use super::G;
 
 /// JONSWAP's mean peak enhancement factor γ (Hasselmann et al. 1973).
@@ -23,6 +31,14 @@ pub const JONSWAP_GAMMA: f64 = 3.3;
 pub const JONSWAP_SIGMA_BELOW: f64 = 0.07;
 /// Peak width σ above the peak frequency.
 pub const JONSWAP_SIGMA_ABOVE: f64 = 0.09;
+
+/// Weight in [0, 1] of the fully developed (Pierson-Moskowitz) α and γ at the dimensionless fetch
+/// `q = x / x_full` (<= 1): 0 below a tenth of full development, 1 at it, a smoothstep in `log10 q`
+/// between (see the module documentation).
+fn maturity(q: f64) -> f64 {
+    let s = (1.0 + q.log10()).clamp(0.0, 1.0);
+    s * s * (3.0 - 2.0 * s)
+}
 
 /// JONSWAP frequency spectrum.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,7 +57,14 @@ impl Jonswap {
     pub fn from_wind(u10: f64, fetch: f64, gamma: f64) -> Self {
         let x_full = (22.0 / Self::fully_developed_peak(u10)).powi(3);
         let x = (G * fetch / (u10 * u10)).min(x_full);
-        Self { alpha: 0.076 * x.powf(-0.22), peak_omega: 22.0 * G / u10 * x.powf(-1.0 / 3.0), gamma }
+        let w = maturity(x / x_full);
+        let alpha = (0.076 * x.powf(-0.22)).powf(1.0 - w) * PM_ALPHA.powf(w);
+        Self { alpha, peak_omega: 22.0 * G / u10 * x.powf(-1.0 / 3.0), gamma: gamma.powf(1.0 - w) }
+    }
+
+    /// Whether this spectrum is Pierson-Moskowitz's (γ = 1 and α = 0.0081, a fully developed sea).
+    pub fn is_fully_developed(&self) -> bool {
+        self.gamma == 1.0 && self.alpha == PM_ALPHA
     }
 
     /// Pierson-Moskowitz's peak `w_p U10 / g` for this wind (dimensionless, about 0.855).
@@ -82,15 +105,34 @@ mod tests {
     }
 
     #[test]
-    fn gamma_one_at_full_development_is_close_to_pierson_moskowitz() {
-        let u = 12.0;
-        let j = Jonswap::from_wind(u, 1e9, 1.0);
-        let pm = PiersonMoskowitz::from_u10(u);
-        assert!((j.peak_omega / pm.peak_omega() - 1.0).abs() < 1e-9);
+    fn beyond_full_development_the_sea_is_pierson_moskowitz() {
         let m0 = |f: &dyn Fn(f64) -> f64| super::super::frequency_moment(f, 0, 0.05, 20.0, 20_000);
-        let ratio = m0(&|w| j.density(w)) / m0(&|w| pm.density(w));
-        // Same shape and peak; α differs (0.0089 vs 0.0081 with 1.25 vs 0.74 scaling): within 15 %.
-        assert!((ratio - 1.0).abs() < 0.15, "{ratio}");
+        for u in [8.0, 12.0, 20.0] {
+            let pm = PiersonMoskowitz::from_u10(u);
+            for fetch in [5e6, 1e9] {
+                let j = Jonswap::from_wind(u, fetch, JONSWAP_GAMMA);
+                assert!(j.is_fully_developed(), "U {u} fetch {fetch}: {j:?}");
+                assert!((j.peak_omega / pm.peak_omega() - 1.0).abs() < 1e-9);
+                let ratio = m0(&|w| j.density(w)) / m0(&|w| pm.density(w));
+                assert!((ratio - 1.0).abs() < 1e-9, "U {u}: {ratio}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_sea_grows_with_fetch_all_the_way_to_full_development() {
+        let m0 = |j: Jonswap| super::super::frequency_moment(|w| j.density(w), 0, 0.02, 30.0, 40_000);
+        let u = 12.0;
+        let mut last = 0.0;
+        for i in 0..60 {
+            let fetch = 1e3 * 1.12f64.powi(i);
+            let e = m0(Jonswap::from_wind(u, fetch, JONSWAP_GAMMA));
+            assert!(e >= last, "fetch {fetch}: {e} < {last}");
+            last = e;
+        }
+        // Young seas keep the fetch laws and γ = 3.3.
+        let young = Jonswap::from_wind(u, 20e3, JONSWAP_GAMMA);
+        assert_eq!(young.gamma, JONSWAP_GAMMA);
     }
 
     #[test]

@@ -19,9 +19,11 @@
 
 mod dispersion;
 
-pub use dispersion::{quantize_to_period, Dispersion, SURFACE_TENSION, WATER_DENSITY};
+pub use dispersion::{Dispersion, SURFACE_TENSION, WATER_DENSITY};
+pub use loop_period::{loop_cycles, loop_time, quantize_to_period, LoopFit, MAX_LOOP_SHIFT};
 mod directional;
 mod jonswap;
+mod loop_period;
 mod phillips;
 mod pierson_moskowitz;
 mod spreading;

@@ -22,6 +22,9 @@ pub struct Tma {
     pub jonswap: Jonswap,
     /// Water depth D (m, > 0).
     pub depth: f64,
+    /// The angular frequency (rad/s) where this spectrum peaks ([`Tma::new`] finds it). The depth
+    /// factor rises with frequency, so in shallow water the peak sits above JONSWAP's.
+    pub peak_omega: f64,
 }
 
 /// Kitaigorodskii's depth factor φ(w, D) in [0, 1] for angular frequency w (rad/s) and depth D (m).
@@ -41,6 +44,36 @@ pub fn tma_depth_factor(omega: f64, depth: f64) -> f64 {
 }
 
 impl Tma {
+    /// The TMA spectrum of `jonswap` over water `depth` metres deep (> 0), with its own peak.
+    pub fn new(jonswap: Jonswap, depth: f64) -> Self {
+        let mut tma = Self { jonswap, depth, peak_omega: jonswap.peak_omega };
+        tma.peak_omega = tma.find_peak();
+        tma
+    }
+
+    /// The maximum of S(w): a scan from JONSWAP's peak (the depth factor only moves it up) to
+    /// three times it, then golden-section refinement around the best sample, to 1e-9 relative.
+    fn find_peak(&self) -> f64 {
+        const SAMPLES: usize = 400;
+        let (lo, hi) = (0.9 * self.jonswap.peak_omega, 3.0 * self.jonswap.peak_omega);
+        let step = (hi - lo) / SAMPLES as f64;
+        let best = (0..=SAMPLES)
+            .map(|i| lo + step * i as f64)
+            .max_by(|a, b| self.density(*a).total_cmp(&self.density(*b)))
+            .expect("samples");
+        let (mut a, mut b) = (best - step, best + step);
+        let ratio = (5f64.sqrt() - 1.0) / 2.0;
+        while b - a > 1e-9 * best {
+            let (c, d) = (b - ratio * (b - a), a + ratio * (b - a));
+            if self.density(c) > self.density(d) {
+                b = d;
+            } else {
+                a = c;
+            }
+        }
+        (a + b) / 2.0
+    }
+
     /// S(w) in m² s/rad at angular frequency w (rad/s).
     pub fn density(&self, omega: f64) -> f64 {
         self.jonswap.density(omega) * tma_depth_factor(omega, self.depth)
@@ -68,13 +101,29 @@ mod tests {
     }
 
     #[test]
+    fn the_peak_is_the_tma_spectrum_s_own_and_rises_in_shallow_water() {
+        let j = Jonswap::from_wind(12.0, 150e3, 3.3);
+        assert!((Tma::new(j, 1e4).peak_omega / j.peak_omega - 1.0).abs() < 1e-6);
+        let mut last = j.peak_omega;
+        for depth in [20.0, 8.0, 3.0] {
+            let t = Tma::new(j, depth);
+            let wp = t.peak_omega;
+            assert!(wp > last, "depth {depth}: {wp} not above {last}");
+            for w in [0.97 * wp, 0.999 * wp, 1.001 * wp, 1.03 * wp] {
+                assert!(t.density(w) <= t.density(wp), "depth {depth}: S({w}) above S({wp})");
+            }
+            last = wp;
+        }
+    }
+
+    #[test]
     fn shallow_water_lowers_the_energy_by_the_depth_factor() {
         let j = Jonswap::from_wind(12.0, 150e3, 3.3);
         let m0 = |f: &dyn Fn(f64) -> f64| frequency_moment(f, 0, 0.05, 20.0, 20_000);
         let deep = m0(&|w| j.density(w));
         let mut last = deep;
         for depth in [100.0, 20.0, 8.0, 3.0] {
-            let tma = Tma { jonswap: j, depth };
+            let tma = Tma::new(j, depth);
             let shallow = m0(&|w| tma.density(w));
             assert!(shallow < last, "depth {depth}: {shallow} not below {last}");
             last = shallow;
@@ -83,7 +132,7 @@ mod tests {
             let ratio = tma.density(w) / j.density(w);
             assert!((ratio - tma_depth_factor(w, depth)).abs() < 1e-12 && ratio < 1.0);
         }
-        assert!((Tma { jonswap: j, depth: 1e4 }.density(1.0) / j.density(1.0) - 1.0).abs() < 1e-12);
+        assert!((Tma::new(j, 1e4).density(1.0) / j.density(1.0) - 1.0).abs() < 1e-12);
         // At 3 m the 12 m/s sea keeps well under half its deep-water variance.
         assert!(last < 0.5 * deep, "{last} vs {deep}");
     }

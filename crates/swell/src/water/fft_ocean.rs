@@ -33,17 +33,30 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 pub use self::blender::{BlenderOcean, BlenderSpectrum, BLENDER_RESOLUTION_RANGE};
-use self::cascade::{Cascade, CascadeSetup, FoamRows, PAIR_H_DX};
+use self::cascade::{Cascade, CascadeSetup, PAIR_H_DX};
 pub use self::params::{FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE, MAX_CASCADES};
 use super::foam::FoamField;
 use super::wave_model::{WaveModel, INVERSION_MAX_ITERATIONS, INVERSION_TOLERANCE};
 use crate::error::Result;
 use crate::math::{fast_floor, GridSpec};
-use crate::spectrum::DirectionalSpectrum;
+use crate::spectrum::{loop_time, DirectionalSpectrum};
 
 /// Ratio of the sides of successive cascades: sqrt(19) ≈ 4.36, irrational so the tiles of different
 /// cascades never line up, and large enough that each cascade adds a decade of short waves.
 pub const CASCADE_SCALE: f32 = 4.358_899;
+
+/// What the first patch's side is divided by for cascade `c`: `CASCADE_SCALE^c`, or with
+/// `tile_cascades` that rounded to a whole number (1, 4, 19, 83), so every patch divides the first
+/// and the sum repeats over the first patch (maps that tile) while the tiles of different cascades
+/// still line up only at the first patch's corners.
+fn cascade_divisor(c: usize, tile_cascades: bool) -> f32 {
+    let scale = CASCADE_SCALE.powi(c as i32);
+    if tile_cascades {
+        scale.round()
+    } else {
+        scale
+    }
+}
 
 /// Fraction of a cascade's Nyquist wavenumber `π N / L` where the next, smaller cascade takes over.
 /// Half: the upper half of a grid's band is resolved by few samples per wave, the next cascade
@@ -60,9 +73,10 @@ pub struct StageTimes {
     /// fields are built from and their transforms over kz.
     pub evolve_ms: f64,
     /// Row pass: gathering the bases into the eight fields' packed pairs (a transpose), their
-    /// transforms over kx, with the Jacobian and foam of the first cascade fused in.
+    /// transforms over kx, with the Jacobian and the frame's foam of the first cascade fused in.
     pub fft_ms: f64,
-    /// Foam on its own: 0 since foam is fused into the row pass (kept so the JSON keeps its keys).
+    /// The foam lattice's steps that this time needed (the first cascade synthesised at the
+    /// lattice times, `water/foam.rs`): 0 when none was due.
     pub foam_ms: f64,
 }
 
@@ -101,7 +115,8 @@ pub struct FftOcean {
 type Fields = [f32; 8];
 
 impl FftOcean {
-    /// Validates `params`, builds the spectrum and the cascades and synthesises time 0.
+    /// Validates `params`, builds the spectrum and the cascades and synthesises the fields of
+    /// time 0 (the foam is computed by the first [`WaveModel::advance`]).
     ///
     /// Setup costs O(cascades N²) spectrum evaluations and allocates every buffer the steps use.
     ///
@@ -114,7 +129,8 @@ impl FftOcean {
         let spectrum = params.spectrum();
         let n = params.grid as usize;
         let count = params.cascades as usize;
-        let patches: Vec<f32> = (0..count).map(|c| params.patch_size / CASCADE_SCALE.powi(c as i32)).collect();
+        let patches: Vec<f32> =
+            (0..count).map(|c| params.patch_size / cascade_divisor(c, params.tile_cascades)).collect();
         let handover = |c: usize| CASCADE_HANDOVER * std::f64::consts::PI * n as f64 / f64::from(patches[c]);
         let cascades = (0..count)
             .map(|c| {
@@ -132,7 +148,7 @@ impl FftOcean {
                 })
             })
             .collect();
-        let foam = FoamField::new(n, params.foam_threshold, params.foam_fade_s);
+        let foam = FoamField::new(n, params.foam_threshold, params.foam_fade_s, params.loop_period.map(f64::from));
         let mut ocean = Self {
             params: params.clone(),
             spectrum,
@@ -141,10 +157,12 @@ impl FftOcean {
             time: f64::NAN,
             stage_times: StageTimes::default(),
         };
-        ocean.step(0.0);
         if let Some(b) = &params.blender {
             ocean.normalise_max_height(b.wave_scale);
         }
+        // The fields of t = 0, so that the ocean can be sampled at once; the foam (whose lattice
+        // may need many steps) waits for the first `advance`, which the time NaN forces.
+        ocean.synthesise(0.0);
         Ok(ocean)
     }
 
@@ -152,6 +170,7 @@ impl FftOcean {
     /// at t = 0 (the others sampled there) is `max_height` m, and re-synthesises t = 0. Blender's
     /// "normalise factor"; a flat sea stays flat.
     fn normalise_max_height(&mut self, max_height: f32) {
+        self.synthesise(0.0);
         let state = self.sea_state();
         let highest = state.max_height.max(-state.min_height);
         if !(highest > 0.0 && highest.is_finite()) {
@@ -161,8 +180,7 @@ impl FftOcean {
         for c in &mut self.cascades {
             c.scale_amplitudes(factor);
         }
-        self.foam = FoamField::new(self.foam.n, self.foam.threshold, self.foam.fade);
-        self.step(0.0);
+        self.foam.reset();
     }
 
     /// The parameters, as validated.
@@ -185,28 +203,50 @@ impl FftOcean {
         self.stage_times
     }
 
-    /// Synthesises every field for time `t` (s); no allocation, except the per-thread scratch at
-    /// the first step and when a larger thread pool than before runs it.
+    /// Synthesises every field and the foam for time `t` (s); no allocation, except the
+    /// per-thread scratch at the first step and when a larger thread pool than before runs it.
+    ///
+    /// With a loop period the fields are those of `t` reduced into the first period
+    /// ([`loop_time`]), so a loop's frame N is its frame 0 bit for bit. Foam with persistence first
+    /// brings its lattice to `t` (the first cascade alone, stepped at the lattice times; see
+    /// `water/foam.rs`), then every cascade is synthesised at `t`.
     fn step(&mut self, t: f64) {
         let t0 = Instant::now();
-        for c in &mut self.cascades {
-            c.column_pass(t);
+        let local = self.params.loop_period.map_or(t, |p| loop_time(t, f64::from(p)));
+        if self.params.foam {
+            if let Some(steps) = self.foam.plan(local) {
+                // Foam follows the largest cascade alone: its grid is where foam is stored, and
+                // the smaller cascades' short waves, sampled on it, would alias into speckle and
+                // make the threshold depend on the number of cascades.
+                for k in steps.indices() {
+                    let first = &mut self.cascades[0];
+                    first.column_pass(self.foam.lattice_time(k));
+                    first.row_pass(Some(self.foam.lattice_update()));
+                }
+            }
         }
         let t1 = Instant::now();
-        // Foam follows the largest cascade alone: its grid is where foam is stored, and the
-        // smaller cascades' short waves, sampled on it, would alias into speckle and make the
-        // threshold depend on the number of cascades. It is updated inside that cascade's row pass.
-        let mut foam = self.params.foam.then(|| {
-            let decay = self.foam.start_update(t);
-            FoamRows { values: &mut self.foam.values, decay, threshold: self.foam.threshold }
-        });
+        for c in &mut self.cascades {
+            c.column_pass(local);
+        }
+        let t2 = Instant::now();
+        // The frame's own foam is updated inside the first cascade's row pass.
+        let mut foam = self.params.foam.then(|| self.foam.frame_update(local));
         for c in &mut self.cascades {
             c.row_pass(foam.take());
         }
-        let t2 = Instant::now();
+        let t3 = Instant::now();
         self.time = t;
         let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
-        self.stage_times = StageTimes { evolve_ms: ms(t0, t1), fft_ms: ms(t1, t2), foam_ms: 0.0 };
+        self.stage_times = StageTimes { evolve_ms: ms(t1, t2), fft_ms: ms(t2, t3), foam_ms: ms(t0, t1) };
+    }
+
+    /// Synthesises the fields (not the foam) for time `t` (s), as at the start of a loop.
+    fn synthesise(&mut self, t: f64) {
+        for c in &mut self.cascades {
+            c.column_pass(t);
+            c.row_pass(None);
+        }
     }
 
     /// The eight fields summed over cascades at the rest point (x, z) (m), at the last step's time.
@@ -430,6 +470,17 @@ impl WaveModel for FftOcean {
             rest += 0.75 * (target - landed);
         }
         best.1
+    }
+
+    /// The first patch's side when every cascade's patch divides it (one cascade, or
+    /// `tile_cascades`): the sum of the cascades then repeats over it.
+    fn spatial_period(&self) -> Option<f32> {
+        let first = self.cascades[0].patch;
+        let divides = |c: &Cascade| {
+            let ratio = f64::from(first) / f64::from(c.patch);
+            (ratio - ratio.round()).abs() < 1e-5 * ratio
+        };
+        self.cascades.iter().all(divides).then_some(first)
     }
 
     fn advance(&mut self, t: f64) -> Result<()> {

@@ -8,8 +8,11 @@
 //! ```text
 //! x = x0 - sum D_i A_i sin(k_i . x0 - w_i t + phi_i)      y = sum A_i cos(k_i . x0 - w_i t + phi_i)
 //! w_i = w(k_i)                    (deep, finite depth or capillary-gravity dispersion)
-//! w_i = floor(T w_i / 2 pi) 2 pi / T                        (optional, paper 003 eq. 10: loops after T)
+//! w_i = max(1, round(T w_i / 2 pi)) 2 pi / T               (optional: loops after T)
 //! ```
+//!
+//! Paper 003 eq. 10 rounds down (`floor`), which freezes every wave longer than the loop; swell
+//! rounds to the nearest non-zero multiple (`spectrum/loop_period.rs`).
 //!
 //! Each point moves on a circle of radius A_i per wave (exactly so for one deep-water wave). `k A`
 //! sets the shape: 0 is flat, 1 a cusp, above 1 the crest loops over itself (paper 003, figure 3).
@@ -26,7 +29,7 @@ use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVE
 use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
 use crate::error::{check_direction, check_finite_vec, check_non_negative, check_positive, Error, Result};
 use crate::math::GridSpec;
-use crate::spectrum::{quantize_to_period, Dispersion};
+use crate::spectrum::{loop_time, quantize_to_period, Dispersion};
 
 /// Most waves one [`GerstnerTessendorf`] sums.
 pub const MAX_TESSENDORF_WAVES: usize = MAX_TROCHOIDAL_WAVES;
@@ -163,7 +166,9 @@ impl PointWave for GerstnerTessendorf {
     type Frame = Phases;
 
     fn frame(&self, t: f64) -> Self::Frame {
-        self.sum.phases(t)
+        // A looping sea's phases come from the time within the loop, so that the loop closes bit
+        // for bit (the quantised f32 frequencies alone would drift over many periods).
+        self.sum.phases(self.params.loop_period.map_or(t, |p| loop_time(t, f64::from(p))))
     }
 
     fn sample(&self, frame: &Self::Frame, rest: Vec2) -> SurfacePoint {

@@ -26,7 +26,9 @@ pub use fft_ocean::{
     FftOcean, FftOceanParams, SeaState, SpectrumKind, StageTimes, SwellParams, CASCADE_SCALE, FFT_GRID_RANGE,
     MAX_CASCADES,
 };
-pub use foam::{foam_coverage, FoamField, FOAM_RAMP};
+pub use foam::{
+    foam_coverage, foam_update, FoamField, FoamUpdate, LatticeSteps, FOAM_FADE_FLOOR, FOAM_LATTICE_STEP_S, FOAM_RAMP,
+};
 pub use gerstner::{Gerstner, GerstnerWave, MAX_GERSTNER_WAVES};
 pub use gerstner_tessendorf::{GerstnerTessendorf, TessendorfParams, TessendorfWave, MAX_TESSENDORF_WAVES};
 pub use noise_waves::{NoiseFrame, NoiseParams, NoiseWaves, MAX_NOISE_OCTAVES};

@@ -40,6 +40,14 @@ pub trait WaveModel: Send + Sync {
         false
     }
 
+    /// Side (m) of the square over which the surface repeats exactly along X and along Z, if it
+    /// does: maps baked over a whole number of periods tile seamlessly. `None` (the default) for a
+    /// surface that does not repeat in space (Gerstner and sine sums, whose wave vectors share no
+    /// common period, noise, the finite pool, springs and river).
+    fn spatial_period(&self) -> Option<f32> {
+        None
+    }
+
     /// Disturbs the surface at world (x, z) (m): a dent `amount` metres deep at the centre easing
     /// to 0 at `radius` m (the viewer's click on the water). Returns true if the model has state to
     /// disturb; closed-form models cannot be disturbed and return false (the default). The

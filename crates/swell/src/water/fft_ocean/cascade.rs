@@ -74,8 +74,8 @@ use super::foam_simd;
 use super::jacobian;
 use super::transpose_simd;
 use crate::math::{reduce_turns, sin_cos_turns};
-use crate::spectrum::DirectionalSpectrum;
-use crate::water::foam_coverage;
+use crate::spectrum::{loop_cycles, DirectionalSpectrum};
+use crate::water::foam::{foam_coverage, foam_update, FoamUpdate};
 
 /// Rows handled by one parallel task of the row pass.
 const ROWS_PER_TASK: usize = 16;
@@ -212,16 +212,6 @@ fn thread_scratch(buffers: &[Mutex<ThreadScratch>]) -> MutexGuard<'_, ThreadScra
     buffers[i].lock().unwrap_or_else(PoisonError::into_inner)
 }
 
-/// The foam field's rows, handed to [`Cascade::row_pass`] so the foam update runs fused with it.
-pub(super) struct FoamRows<'a> {
-    /// Coverage in [0, 1], `[z][x]`, updated in place.
-    pub values: &'a mut [f32],
-    /// Factor applied to the previous coverage (persistence), in [0, 1].
-    pub decay: f32,
-    /// Jacobian threshold below which foam appears.
-    pub threshold: f32,
-}
-
 /// Wave-vector integer of FFT index i on a grid of n: i below n/2, i - n above.
 fn signed_index(i: usize, n: usize) -> i32 {
     if i < n / 2 {
@@ -310,8 +300,9 @@ impl Cascade {
                     row.1.push(mirror);
                     let w = s.spectrum.dispersion.omega_f64(kx.hypot(kz));
                     row.2.push(match s.loop_period {
-                        // Paper 003 eq. 10: w = floor(w T / 2π) 2π / T, so every wave repeats after T.
-                        Some(t) => (w * t / TAU).floor() / t,
+                        // A whole number of cycles per loop (the nearest, at least one), so every
+                        // wave repeats after T; see `spectrum/loop_period.rs`.
+                        Some(t) => loop_cycles(w, t) / t,
                         None => w / TAU,
                     });
                 }
@@ -423,7 +414,7 @@ impl Cascade {
     /// four pairs, and transforms each row over kx, into [`Cascade::fields`]; with `foam`, updates
     /// the foam of the rows just transformed while they are still in cache (the Jacobian needs only
     /// its own sample).
-    pub fn row_pass(&mut self, foam: Option<FoamRows>) {
+    pub fn row_pass(&mut self, foam: Option<FoamUpdate>) {
         let n = self.n;
         let rows = WorkLayout::ROWS;
         let (work, layout, fft, kx, avx2) =
@@ -463,21 +454,23 @@ impl Cascade {
             None => tasks.enumerate().for_each(|(task, (((o0, o1), o2), o3))| {
                 body(task, [o0, o1, o2, o3]);
             }),
-            Some(FoamRows { values, decay, threshold }) => {
-                tasks.zip(values.par_chunks_mut(chunk)).enumerate().for_each(|(task, ((((o0, o1), o2), o3), foam))| {
+            Some(FoamUpdate { out, source, decay, floor, threshold }) => {
+                tasks.zip(out.par_chunks_mut(chunk)).enumerate().for_each(|(task, ((((o0, o1), o2), o3), foam))| {
                     body(task, [&mut *o0, &mut *o1, &mut *o2, &mut *o3]);
                     let written = [&*o0, &*o1, &*o2, &*o3];
                     let (dxx, jac) = (written[PAIR_HZ_DXX], written[PAIR_DZZ_DXZ]);
+                    let source = source.map(|s| &s[task * chunk..task * chunk + foam.len()]);
                     // Foam follows the Jacobian of the rows this task has just written.
                     let mut done = 0;
                     #[cfg(target_arch = "x86_64")]
                     if avx2 {
                         // SAFETY: `avx2` is set only when the CPU reports AVX2.
-                        done = unsafe { foam_simd::update(foam, dxx, jac, threshold, decay) };
+                        done = unsafe { foam_simd::update(foam, source, dxx, jac, threshold, decay, floor) };
                     }
-                    let (foam, dxx, jac) = (&mut foam[done..], &dxx[done..], &jac[done..]);
-                    for ((v, dxx), dzz_dxz) in foam.iter_mut().zip(dxx).zip(jac) {
-                        *v = foam_coverage(jacobian(dxx.im, dzz_dxz.re, dzz_dxz.im), threshold).max(*v * decay);
+                    for i in done..foam.len() {
+                        let previous = source.map_or(foam[i], |s| s[i]);
+                        let coverage = foam_coverage(jacobian(dxx[i].im, jac[i].re, jac[i].im), threshold);
+                        foam[i] = foam_update(coverage, previous, decay, floor);
                     }
                 })
             }

@@ -1,5 +1,6 @@
 //! The foam update fused into the row pass (`cascade.rs`) in AVX2 registers, eight samples at a
-//! time: `v = max(coverage(J), v decay)` with the Jacobian
+//! time: `v = max(coverage(J), previous decay - floor)` ([`foam_update`](crate::water::foam::foam_update))
+//! with the Jacobian
 //! `J = (1 + Dxx)(1 + Dzz) - Dxz²` (Tessendorf 2001 §4.6; paper 003 §1.3) and
 //! [`foam_coverage`](crate::water::foam_coverage)'s ramp.
 //!
@@ -15,7 +16,8 @@ use rustfft::num_complex::Complex32;
 
 use crate::water::FOAM_RAMP;
 
-/// Updates `foam[i] = max(coverage(J_i), foam[i] decay)` for i from 0 in groups of eight, with
+/// Updates `foam[i] = max(coverage(J_i), previous[i] decay - floor)` for i from 0 in groups of
+/// eight, where `previous` is `source` or, without one, `foam` itself, with
 /// `Dxx = hz_dxx[i].im`, `Dzz = dzz_dxz[i].re`, `Dxz = dzz_dxz[i].im`, and returns the first i it did
 /// not update (the caller does the rest with the scalar code).
 ///
@@ -25,17 +27,20 @@ use crate::water::FOAM_RAMP;
 #[target_feature(enable = "avx2")]
 pub(super) unsafe fn update(
     foam: &mut [f32],
+    source: Option<&[f32]>,
     hz_dxx: &[Complex32],
     dzz_dxz: &[Complex32],
     threshold: f32,
     decay: f32,
+    floor: f32,
 ) -> usize {
     use std::arch::x86_64::*;
 
     let n = foam.len();
-    assert!(hz_dxx.len() == n && dzz_dxz.len() == n);
+    assert!(hz_dxx.len() == n && dzz_dxz.len() == n && source.is_none_or(|s| s.len() == n));
     let (zero, one) = (_mm256_setzero_ps(), _mm256_set1_ps(1.0));
     let (th, ramp, dec) = (_mm256_set1_ps(threshold), _mm256_set1_ps(FOAM_RAMP), _mm256_set1_ps(decay));
+    let low = _mm256_set1_ps(floor);
     let mut i = 0;
     while i + 8 <= n {
         // SAFETY: i + 8 <= n entries of every slice.
@@ -56,7 +61,8 @@ pub(super) unsafe fn update(
             // `maxps(a, b)` is `a > b ? a : b`: with a = 0 a NaN or -0 in b passes, as in `clamp`.
             let coverage = _mm256_min_ps(one, _mm256_max_ps(zero, ramped));
             let at = foam.as_mut_ptr().add(i);
-            let kept = _mm256_mul_ps(_mm256_loadu_ps(at), dec);
+            let previous = source.map_or(at.cast_const(), |s| s.as_ptr().add(i));
+            let kept = _mm256_sub_ps(_mm256_mul_ps(_mm256_loadu_ps(previous), dec), low);
             _mm256_storeu_ps(at, _mm256_max_ps(coverage, kept));
         }
         i += 8;
@@ -68,7 +74,7 @@ pub(super) unsafe fn update(
 mod tests {
     use super::*;
     use crate::water::fft_ocean::jacobian;
-    use crate::water::foam_coverage;
+    use crate::water::foam::{foam_coverage, foam_update};
 
     #[test]
     fn the_avx2_foam_update_equals_the_scalar_update() {
@@ -80,15 +86,17 @@ mod tests {
         let hz_dxx: Vec<Complex32> = (0..n).map(|i| Complex32::new(wave(i, 0.3), wave(i, 0.71) * 0.9)).collect();
         let dzz_dxz: Vec<Complex32> = (0..n).map(|i| Complex32::new(wave(i, 1.3) * 0.8, wave(i, 0.17) * 0.6)).collect();
         let start: Vec<f32> = (0..n).map(|i| if i % 5 == 0 { 0.0 } else { wave(i, 0.5).abs() }).collect();
-        for (threshold, decay) in [(0.3, 0.9), (0.8, 0.0), (1.0, 1.0), (-0.2, 0.5)] {
+        let other: Vec<f32> = (0..n).map(|i| wave(i, 0.9).abs()).collect();
+        let cases = [(0.3, 0.9, 0.0), (0.8, 0.0, 0.0), (1.0, 1.0, 0.0), (-0.2, 0.5, 0.01), (0.5, 0.97, 0.0005)];
+        for ((threshold, decay, floor), source) in cases.into_iter().flat_map(|c| [(c, None), (c, Some(&other[..]))]) {
             let mut simd = start.clone();
             // SAFETY: AVX2 checked above.
-            let done = unsafe { update(&mut simd, &hz_dxx, &dzz_dxz, threshold, decay) };
+            let done = unsafe { update(&mut simd, source, &hz_dxx, &dzz_dxz, threshold, decay, floor) };
             assert!(done > n - 8, "{done}");
             for i in 0..done {
-                let want = foam_coverage(jacobian(hz_dxx[i].im, dzz_dxz[i].re, dzz_dxz[i].im), threshold)
-                    .max(start[i] * decay);
-                assert_eq!(want, simd[i], "threshold {threshold} decay {decay} sample {i}");
+                let coverage = foam_coverage(jacobian(hz_dxx[i].im, dzz_dxz[i].re, dzz_dxz[i].im), threshold);
+                let want = foam_update(coverage, source.map_or(start[i], |s| s[i]), decay, floor);
+                assert_eq!(want, simd[i], "threshold {threshold} decay {decay} floor {floor} sample {i}");
             }
         }
     }
