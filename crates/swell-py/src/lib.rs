@@ -8,9 +8,7 @@ use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
 
 use glam::{Vec2, Vec3};
-use numpy::{
-    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn,
-};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
@@ -69,7 +67,10 @@ fn broadcast<'py>(
     z: &Bound<'py, PyAny>,
 ) -> PyResult<(PyReadonlyArrayDyn<'py, f64>, PyReadonlyArrayDyn<'py, f64>, Vec<usize>)> {
     let np = py.import("numpy")?;
-    let pair = np.call_method1("broadcast_arrays", (np.call_method1("asarray", (x, "float64"))?, np.call_method1("asarray", (z, "float64"))?))?;
+    let pair = np.call_method1(
+        "broadcast_arrays",
+        (np.call_method1("asarray", (x, "float64"))?, np.call_method1("asarray", (z, "float64"))?),
+    )?;
     let contiguous = |k: usize| -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
         let a = np.call_method1("ascontiguousarray", (pair.get_item(k)?, "float64"))?;
         Ok(a.downcast_into::<PyArrayDyn<f64>>()?.readonly())
