@@ -40,7 +40,7 @@ pub enum Command {
 pub struct StatsArgs {
     #[command(flatten)]
     pub source: SceneSource,
-    /// Simulation time, in seconds.
+    /// Simulation time, in seconds, in [-1e7, 1e7].
     #[arg(long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true)]
     pub time: f64,
 }
@@ -65,17 +65,20 @@ pub struct RenderArgs {
     /// Output file: `.png` for one frame, `.gif` for an animation (with --frames).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
-    /// Simulation time of the (first) frame, in seconds.
-    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true)]
-    pub time: f64,
+    /// Simulation time of the frame (of frame 0 of an animation), in seconds, in [-1e7, 1e7].
+    /// Default 0. Not with --obj (a mesh does not move).
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub time: Option<f64>,
     /// Image size as WIDTHxHEIGHT (default: the scene's [render] size, 1280x720 unless set).
     #[arg(long, value_name = "WxH")]
     pub size: Option<String>,
-    /// Number of frames of a GIF animation, 1 to 10000.
-    #[arg(long, value_name = "N")]
-    pub frames: Option<u32>,
-    /// Frames per second of the animation, in (0, 100]; frame k shows time + k / fps.
-    #[arg(long, value_name = "F", default_value_t = 24.0)]
+    /// The frames of a GIF animation: a count N (frames 0 to N-1) or a range A..B (both
+    /// included), as in `export` and `bake`; frame k shows time --time + k / fps. At most 10000.
+    #[arg(long, value_name = "N|A..B", allow_hyphen_values = true)]
+    pub frames: Option<String>,
+    /// Frames per second, in (0, 1000] as in `export` and `bake`; a GIF plays at most 50 (its
+    /// delays are hundredths of a second, alternated so that the rate is exact on average).
+    #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]
     pub fps: f64,
     /// Worker threads, 0 = one per core (default: the scene's render.threads). The image does not
     /// depend on it.
@@ -97,18 +100,18 @@ pub struct RenderArgs {
     pub supersample: Option<u32>,
     /// Comparison mode: render this Wavefront OBJ mesh (v, vn, f) instead of a scene; needs
     /// --camera. Writes the framebuffer without gamma encoding, as OpenGL's RGBA8 would hold it.
-    #[arg(long, value_name = "MESH.obj", group = "SceneSource", requires = "camera")]
+    #[arg(long, value_name = "MESH.obj", group = "SceneSource")]
     pub obj: Option<PathBuf>,
     /// With --obj: camera JSON {"eye","target","up","fov_y_deg","near","far","width","height"}.
-    #[arg(long, value_name = "CAMERA.json", requires = "obj")]
+    #[arg(long, value_name = "CAMERA.json")]
     pub camera: Option<PathBuf>,
     /// With --obj: directional light JSON {"dir","color","ambient","base_color","background"}
     /// (linear colours; dir is where the light travels); default a white light from above.
-    #[arg(long, value_name = "LIGHT.json", requires = "obj")]
+    #[arg(long, value_name = "LIGHT.json")]
     pub light: Option<PathBuf>,
     /// With --obj: render N times and print the median render time as {"median_ms": ...}
     /// (file loading and writing excluded). N in [1, 10000].
-    #[arg(long, value_name = "N", requires = "obj")]
+    #[arg(long, value_name = "N")]
     pub repeat: Option<u32>,
 }
 
@@ -185,7 +188,7 @@ pub struct ExportArgs {
     /// Mesh format: obj, gltf (JSON + .bin) or glb (default: from the --out extension).
     #[arg(long, value_name = "FORMAT")]
     pub format: Option<String>,
-    /// Simulation time in seconds (one file).
+    /// Simulation time in seconds (one file), in [-1e7, 1e7].
     #[arg(
         long,
         value_name = "SECONDS",
@@ -194,8 +197,9 @@ pub struct ExportArgs {
         conflicts_with = "frames"
     )]
     pub time: f64,
-    /// Frames A..B (inclusive) to export, one file each, frame k at time k / fps.
-    #[arg(long, value_name = "A..B", allow_hyphen_values = true)]
+    /// The frames to export, one file each: a count N (frames 0 to N-1) or a range A..B (both
+    /// included), frame k at time k / fps.
+    #[arg(long, value_name = "N|A..B", allow_hyphen_values = true)]
     pub frames: Option<String>,
     /// Frames per second for --frames, in (0, 1000].
     #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]
@@ -210,8 +214,9 @@ pub struct ExportArgs {
 pub struct BakeArgs {
     #[command(flatten)]
     pub source: SceneSource,
-    /// Frames A..B to bake, both included (0..0 is one frame), frame k at time k / fps.
-    #[arg(long, value_name = "A..B", allow_hyphen_values = true)]
+    /// The frames to bake: a count N (frames 0 to N-1) or a range A..B (both included: 0..0 is one
+    /// frame), frame k at time k / fps.
+    #[arg(long, value_name = "N|A..B", allow_hyphen_values = true)]
     pub frames: String,
     /// Frames per second, in (0, 1000].
     #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]

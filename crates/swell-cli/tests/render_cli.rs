@@ -115,7 +115,7 @@ fn bad_input_gives_a_clear_error_and_no_output() {
     fails_cleanly(d, &["render", "--preset", "sea", "--out", "x.jpg"], ".png");
     fails_cleanly(d, &["render", "--preset", "sea", "--size", "0x10", "--out", "x.png"], "--size width = 0 is outside");
     fails_cleanly(d, &["render", "--preset", "sea", "--size", "big", "--out", "x.png"], "WIDTHxHEIGHT");
-    fails_cleanly(d, &["render", "--preset", "sea", "--frames", "0", "--out", "x.gif"], "--frames = 0 is outside");
+    fails_cleanly(d, &["render", "--preset", "sea", "--frames", "0", "--out", "x.gif"], "--frames: 0 frames");
     fails_cleanly(d, &["render", "--preset", "sea", "--frames", "3", "--fps", "0", "--out", "x.gif"], "--fps");
     fails_cleanly(d, &["render", "--preset", "sea", "--out", "x.gif"], "--frames");
     fails_cleanly(d, &["render", "--preset", "sea", "--time", "nan", "--out", "x.png"], "--time");

@@ -25,9 +25,15 @@ pub fn run(a: BakeArgs) -> Result<()> {
     settings.compression = ExrCompression::parse("--exr-compression", &a.exr_compression)?;
     settings.validate()?;
     let scene = load_scene(&a.source)?;
+    super::check_steps(
+        &scene,
+        "--frames / --fps (the last frame's time)",
+        f64::from(settings.frames.last) / settings.fps,
+    )?;
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let mut world = World::new(scene)?;
+        super::advance_with_progress(&mut world, f64::from(settings.frames.first) / settings.fps)?;
         settings.loop_period_s = model_loop_period(&world);
         let bake = Bake::prepare(&mut world, &a.out, settings)?;
         let todo = bake.frames_to_bake().len();

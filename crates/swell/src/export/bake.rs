@@ -115,8 +115,13 @@ impl BakeSettings {
             }
         }
         if let Some(r) = self.png_range_m {
+            if self.png_bits.is_none() {
+                return Err(Error::invalid("--png-range", "sets the range of PNG maps: it needs --png"));
+            }
             crate::error::check_positive("--png-range", r)?;
         }
+        let last = f64::from(self.frames.last) / self.fps;
+        crate::limits::check_time("--frames / --fps (the last frame's time)", last)?;
         if let Some(p) = self.loop_period_s {
             if !(p.is_finite() && p > 0.0) {
                 return Err(Error::out_of_range("loop period", p, "(0, inf) seconds"));

@@ -19,6 +19,6 @@ pub use bake_manifest::{BakeGrid, BakeManifest, BakeMap, BakePng};
 pub use frame_range::{FrameRange, Shard, MAX_FRAME, MAX_SHARDS};
 pub use gltf::{gltf_document, write_glb, write_gltf};
 pub use heightmap_exr::write_heightmap_exr;
-pub use image_file::{write_gif, write_png, write_png_map};
+pub use image_file::{gif_delay_cs, write_gif, write_png, write_png_map, MAX_GIF_FPS};
 pub use named_mesh::{world_meshes, NamedMesh};
 pub use obj::{encode_obj, write_obj};

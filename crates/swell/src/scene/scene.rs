@@ -102,7 +102,7 @@ impl Scene {
             terrain,
             render: file.render,
         };
-        scene.validate()?;
+        scene.validate().map_err(|e| e.in_source(source))?;
         Ok(scene)
     }
 
@@ -164,11 +164,14 @@ impl Scene {
         Ok(())
     }
 
-    /// Makes relative file paths in the scene (heightmaps) relative to `dir`, the directory of the
-    /// scene file they were written in.
+    /// Makes relative file paths in the scene (heightmaps, water textures) relative to `dir`, the
+    /// directory of the scene file they were written in.
     pub fn resolve_paths(&mut self, dir: &std::path::Path) {
         if let Some(t) = &mut self.terrain {
             t.resolve_paths(dir);
+        }
+        if let Some(w) = &mut self.water {
+            w.material.resolve_paths(dir);
         }
     }
 }
@@ -200,8 +203,9 @@ mod tests {
 
     #[test]
     fn bad_input_names_key_value_and_range() {
-        let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidth = 0\n"), "t").unwrap_err();
-        assert_eq!(e.to_string(), "render.width = 0 is outside [1, 16384]");
+        let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidth = 0\n"), "t.toml").unwrap_err();
+        assert_eq!(e.to_string(), "t.toml: render.width = 0 is outside [1, 16384]");
+        assert_eq!(e.without_source().to_string(), "render.width = 0 is outside [1, 16384]");
         let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidht = 5\n"), "t").unwrap_err();
         assert!(e.to_string().contains("unknown field `widht`"), "{e}");
         let e =
@@ -210,10 +214,10 @@ mod tests {
         assert!(e.to_string().contains("light[0]"), "{e}");
         let e = Scene::from_toml("version = 2\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n", "t")
             .unwrap_err();
-        assert!(e.to_string().starts_with("version = 2 is outside"), "{e}");
+        assert!(e.to_string().starts_with("t: version = 2 is outside"), "{e}");
         let e = Scene::from_toml("version = 1\n[camera\n", "f.toml").unwrap_err();
         assert!(e.to_string().starts_with("f.toml: TOML parse error"), "{e}");
         let e = Scene::from_toml(&format!("{MINIMAL}[render]\nexposure = nan\n"), "t").unwrap_err();
-        assert!(e.to_string().starts_with("render.exposure = NaN"), "{e}");
+        assert!(e.to_string().starts_with("t: render.exposure = NaN"), "{e}");
     }
 }
