@@ -3,6 +3,7 @@
 mod atomic;
 mod image_file;
 // Meshes (OBJ, glTF), float maps (EXR) and bake sequences: issue 8.
+mod array_job;
 mod bake;
 mod bake_manifest;
 mod exr;
@@ -13,6 +14,7 @@ mod named_mesh;
 mod obj;
 
 pub use self::exr::{write_exr_gray, write_exr_rgb, ExrCompression};
+pub use array_job::{resolve_shard, ResolvedShard, SHARD_COUNT_VAR};
 pub use atomic::write_atomically;
 pub use bake::{model_loop_period, Bake, BakeSettings, MAX_FPS, MIN_PNG_RANGE_M, PNG_RANGE_HEADROOM};
 pub use bake_manifest::{BakeGrid, BakeManifest, BakeMap, BakePng};
