@@ -241,6 +241,11 @@ pub struct BakeArgs {
     /// EXR compression: none, rle, zip or piz (all lossless).
     #[arg(long, value_name = "C", default_value = "none")]
     pub exr_compression: String,
+    /// Space of the normal maps: world (unit normal in swell's axes, +Y up), tangent-gl or
+    /// tangent-dx (tangent space of the flat patch, T = +X, N = +Y, green towards the image's top
+    /// for OpenGL / Blender / Unity / Godot, towards its bottom for DirectX / Unreal).
+    #[arg(long, value_name = "SPACE", default_value = "world")]
+    pub normal_space: String,
     /// Worker threads, 0 = one per core. The files do not depend on it.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: u32,

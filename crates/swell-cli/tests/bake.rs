@@ -342,3 +342,64 @@ fn shard_auto_errors_name_the_variable_value_and_range_and_write_nothing() {
         assert!(!out.exists(), "{shard} {vars:?} left output behind");
     }
 }
+
+#[test]
+fn normal_space_is_checked_recorded_and_part_of_what_resume_compares() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 8);
+    let scene = scene.to_str().unwrap();
+    let out = tmp.path().join("out");
+    let out_s = out.to_str().unwrap();
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..1", "--normal-space", "tangent", "--out", out_s]);
+    assert!(!o.status.success(), "--normal-space tangent was accepted");
+    assert!(
+        stderr(&o).contains("--normal-space: `tangent` is not a normal space; valid: world, tangent-gl, tangent-dx")
+    );
+    assert!(!out.exists());
+
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..1", "--normal-space", "tangent-dx", "--out", out_s]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let manifest: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    assert_eq!(manifest["normal_space"], "tangent-dx");
+    assert_eq!(manifest["manifest_version"], 2);
+    assert_eq!(manifest["axes"]["to_blender"]["matrix"], serde_json::json!([[1, 0, 0], [0, 0, -1], [0, 1, 0]]));
+    assert_eq!(manifest["units"]["length"], "metre");
+    let before = files(&out);
+    // Resuming with another normal space is refused, naming the key.
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..1", "--resume", "--out", out_s]);
+    assert!(!o.status.success() && stderr(&o).contains("`normal_space`"), "{}", stderr(&o));
+    assert!(files(&out) == before);
+    // The same options resume.
+    let o = swell(&[
+        "bake",
+        "--scene",
+        scene,
+        "--frames",
+        "0..1",
+        "--normal-space",
+        "tangent-dx",
+        "--resume",
+        "--out",
+        out_s,
+    ]);
+    assert!(o.status.success() && stderr(&o).contains("2 frames already complete"), "{}", stderr(&o));
+
+    // A directory baked by a swell before manifest_version 2 is refused with the reason.
+    let mut old = manifest.clone();
+    old.as_object_mut().unwrap().remove("manifest_version");
+    std::fs::write(out.join("bake.json"), serde_json::to_vec_pretty(&old).unwrap()).unwrap();
+    let o = swell(&[
+        "bake",
+        "--scene",
+        scene,
+        "--frames",
+        "0..1",
+        "--normal-space",
+        "tangent-dx",
+        "--resume",
+        "--out",
+        out_s,
+    ]);
+    assert!(!o.status.success(), "an old manifest was resumed");
+    assert!(stderr(&o).contains("has manifest_version 1, this swell writes 2"), "{}", stderr(&o));
+}

@@ -3,7 +3,9 @@
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use swell::export::{model_loop_period, resolve_shard, Bake, BakeSettings, ExrCompression, FrameRange, Shard};
+use swell::export::{
+    model_loop_period, resolve_shard, Bake, BakeSettings, ExrCompression, FrameRange, NormalSpace, Shard,
+};
 use swell::scene::World;
 use swell::Result;
 
@@ -31,6 +33,7 @@ pub fn run(a: BakeArgs) -> Result<()> {
     settings.png_range_m = a.png_range;
     settings.tile = a.tile;
     settings.compression = ExrCompression::parse("--exr-compression", &a.exr_compression)?;
+    settings.normal_space = NormalSpace::parse("--normal-space", &a.normal_space)?;
     settings.validate()?;
     let scene = load_scene(&a.source)?;
     let pool = thread_pool(a.threads)?;
