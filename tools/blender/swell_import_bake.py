@@ -162,13 +162,11 @@ def build_grid_mesh(name, manifest):
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata(verts, [], faces)
     uv_layer = mesh.uv_layers.new(name="UVMap")
-    uv = []
-    for poly in mesh.polygons:
-        for li in poly.loop_indices:
-            v = mesh.loops[li].vertex_index
-            i, j = v % nx, v // nx
-            uv.extend(((i + 0.5) / width, 1.0 - (j + 0.5) / height))
-    uv_layer.data.foreach_set("uv", uv)
+    # Per vertex once, then per face corner through the corners' vertex indices.
+    vertex_uv = [((i + 0.5) / width, 1.0 - (j + 0.5) / height) for j in range(nz) for i in range(nx)]
+    corner_vertex = [0] * len(mesh.loops)
+    mesh.loops.foreach_get("vertex_index", corner_vertex)
+    uv_layer.data.foreach_set("uv", [c for v in corner_vertex for c in vertex_uv[v]])
     mesh.update()
     return mesh
 
