@@ -227,8 +227,11 @@ pub struct BakeArgs {
     /// Skip frames whose files all exist (a killed or partial bake continues where it stopped).
     #[arg(long)]
     pub resume: bool,
-    /// Bake only shard I of N: frames A+I, A+I+N, ... (I from 0).
-    #[arg(long, value_name = "I/N")]
+    /// Bake only shard I of N: frames A+I, A+I+N, ... (I from 0). `auto` takes I and N from a
+    /// Slurm job array (SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT), a
+    /// Kubernetes indexed job (JOB_COMPLETION_INDEX; N from `auto/N` or SWELL_SHARD_COUNT) or an
+    /// AWS Batch array job (AWS_BATCH_JOB_ARRAY_INDEX, AWS_BATCH_JOB_ARRAY_SIZE).
+    #[arg(long, value_name = "I/N|auto[/N]")]
     pub shard: Option<String>,
     /// Also write PNG maps with 8 or 16 bits per sample (16 if no value is given).
     #[arg(long, value_name = "BITS", num_args = 0..=1, default_missing_value = "16")]
@@ -243,6 +246,11 @@ pub struct BakeArgs {
     /// EXR compression: none, rle, zip or piz (all lossless).
     #[arg(long, value_name = "C", default_value = "none")]
     pub exr_compression: String,
+    /// Space of the normal maps: world (unit normal in swell's axes, +Y up), tangent-gl or
+    /// tangent-dx (tangent space of the flat patch, T = +X, N = +Y, green towards the image's top
+    /// for OpenGL / Blender / Unity / Godot, towards its bottom for DirectX / Unreal).
+    #[arg(long, value_name = "SPACE", default_value = "world")]
+    pub normal_space: String,
     /// Worker threads, 0 = one per core. The files do not depend on it.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: u32,

@@ -80,6 +80,8 @@ impl FrameRange {
 /// Shard `index` of `count`: the frames `first + index`, `first + index + count`, ... of a range.
 ///
 /// The shards `0/N` to `N-1/N` partition any range, whatever machine or order they run in.
+/// `--shard auto` takes `index` and `count` from a batch system's array-job variables
+/// (`resolve_shard` in `array_job.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
     /// Which shard, in [0, `count`).
