@@ -206,36 +206,62 @@ impl ViewerApp {
             self.move_camera(self.rig.home);
         }
         if let Some(request) = out.file {
-            let message = match request {
-                FileRequest::SaveScene(p) => self.editor.save(&p).map(|()| format!("saved {}", p.display())),
-                FileRequest::LoadScene(p) => self.editor.load(&p).map(|()| {
-                    self.rig = CameraRig::new(self.editor.scene().camera);
-                    format!("loaded {}", p.display())
-                }),
-                FileRequest::SaveView(p) => self.view.save_png(&p).map(|()| {
-                    let [w, h] = self.view.size();
-                    format!("saved the {w}x{h} view to {}", p.display())
-                }),
-                // Generators are deterministic: the spec rebuilds the very field on screen.
-                FileRequest::SaveHeightmap(p) => match &self.editor.scene().terrain {
-                    Some(spec) => {
-                        TerrainBody::new(spec).and_then(|t| swell::terrain::write_heightmap(&p, &t.field)).map(|s| {
-                            format!("saved the heightmap to {} ({} m per grey range)", p.display(), s.height_scale)
-                        })
-                    }
-                    None => Err(Error::invalid("terrain", "there is no terrain to save")),
-                },
-                FileRequest::SaveWindow(p) => {
-                    ctx.send_viewport_cmd(ViewportCommand::Screenshot(egui::UserData::new(ScreenshotPurpose::Panel(
-                        p,
-                    ))));
-                    Ok("taking a screenshot of the window...".into())
-                }
-            };
-            self.panels.files.message = Some(match message {
+            let heightmap = matches!(request, FileRequest::SaveHeightmap(_) | FileRequest::LoadHeightmap(_));
+            let message = match self.file_action(ctx, request) {
                 Ok(m) => FileMessage::Done(m),
-                Err(e) => FileMessage::Failed(e.to_string()),
-            });
+                Err(e) => FileMessage::Failed(e),
+            };
+            // Heightmap outcomes show under the terrain's heightmap row, the others under Files.
+            if heightmap {
+                self.panels.terrain.file_message = Some(message);
+            } else {
+                self.panels.files.message = Some(message);
+            }
+        }
+    }
+
+    /// Does what a file button asked; the outcome names the path: what was written or read, or
+    /// what failed and why.
+    fn file_action(&mut self, ctx: &egui::Context, request: FileRequest) -> std::result::Result<String, String> {
+        let failed = |what: &str, p: &std::path::Path, e: Error| format!("could not {what} {}: {e}", p.display());
+        match request {
+            FileRequest::SaveScene(p) => self
+                .editor
+                .save(&p)
+                .map(|()| format!("saved the scene to {}", p.display()))
+                .map_err(|e| failed("save the scene to", &p, e)),
+            FileRequest::LoadScene(p) => match self.editor.load(&p) {
+                Ok(()) => {
+                    self.rig = CameraRig::new(self.editor.scene().camera);
+                    Ok(format!("loaded the scene {}", p.display()))
+                }
+                Err(e) => Err(failed("load the scene", &p, e)),
+            },
+            FileRequest::SaveView(p) => match self.view.save_png(&p) {
+                Ok(()) => {
+                    let [w, h] = self.view.size();
+                    Ok(format!("saved the {w}x{h} view to {}", p.display()))
+                }
+                Err(e) => Err(failed("save the view to", &p, e)),
+            },
+            // Generators are deterministic: the spec rebuilds the very field on screen.
+            FileRequest::SaveHeightmap(p) => match &self.editor.scene().terrain {
+                Some(spec) => TerrainBody::new(spec)
+                    .and_then(|t| swell::terrain::write_heightmap(&p, &t.field))
+                    .map(|s| format!("saved the heightmap to {} ({} m per grey range)", p.display(), s.height_scale))
+                    .map_err(|e| failed("save the heightmap to", &p, e)),
+                None => {
+                    Err(failed("save the heightmap to", &p, Error::invalid("terrain", "there is no terrain to save")))
+                }
+            },
+            FileRequest::LoadHeightmap(p) => match self.editor.load_heightmap(&p) {
+                Ok([cols, rows]) => Ok(format!("loaded the heightmap {} ({cols} x {rows} vertices)", p.display())),
+                Err(e) => Err(failed("load the heightmap", &p, e)),
+            },
+            FileRequest::SaveWindow(p) => {
+                ctx.send_viewport_cmd(ViewportCommand::Screenshot(egui::UserData::new(ScreenshotPurpose::Panel(p))));
+                Ok("taking a screenshot of the window...".into())
+            }
         }
     }
 
@@ -262,7 +288,7 @@ impl ViewerApp {
                 ScreenshotPurpose::Panel(p) => {
                     self.panels.files.message = Some(match result(&p) {
                         Ok(()) => FileMessage::Done(format!("saved the {w}x{h} window to {}", p.display())),
-                        Err(e) => FileMessage::Failed(e.to_string()),
+                        Err(e) => FileMessage::Failed(format!("could not save the window to {}: {e}", p.display())),
                     });
                 }
                 ScreenshotPurpose::Exit(p) => {
