@@ -8,6 +8,8 @@ use super::load_scene;
 use crate::args::ViewArgs;
 
 pub fn run(a: ViewArgs) -> Result<()> {
+    // Flags first: a bad --screenshot is refused before the scene is read or a window opens.
+    swell_viewer::check_flags(a.screenshot.as_deref(), a.exit_after_frames)?;
     let scene = load_scene(&a.source)?;
     let source = match (&a.source.preset, &a.source.scene) {
         (Some(name), _) => format!("preset {name}"),
