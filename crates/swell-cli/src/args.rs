@@ -268,6 +268,7 @@ pub struct ViewArgs {
     #[arg(long, value_name = "FILE.png", requires = "exit_after_frames")]
     pub screenshot: Option<PathBuf>,
     /// Close the window after rendering N frames (for scripted checks), N >= 1.
-    #[arg(long, value_name = "N")]
-    pub exit_after_frames: Option<u32>,
+    // Negative numbers reach our own check, which names the flag (clap would call `-3` an unknown argument).
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    pub exit_after_frames: Option<i64>,
 }

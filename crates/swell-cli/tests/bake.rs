@@ -1,12 +1,12 @@
 //! `swell bake` and `swell export` through the real binary in a temporary directory: kill and
 //! resume, shards, bad input, and the files the commands promise.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
-const SWELL: &str = env!("CARGO_BIN_EXE_swell");
+mod common;
+use common::{files, stderr, swell, SWELL};
 
 /// The sea preset on a grid of `cells` x `cells`, written to `dir/sea.toml`.
 fn sea_scene(dir: &Path, cells: u32) -> PathBuf {
@@ -16,24 +16,6 @@ fn sea_scene(dir: &Path, cells: u32) -> PathBuf {
     let path = dir.join("sea.toml");
     std::fs::write(&path, text).unwrap();
     path
-}
-
-fn swell(args: &[&str]) -> Output {
-    Command::new(SWELL).args(args).output().unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Every visible file of `dir` (temporaries of killed runs start with a dot) and its bytes.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap())
-        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
-        .map(|e| (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap()))
-        .collect()
 }
 
 #[test]
