@@ -40,7 +40,7 @@ pub enum Command {
 pub struct StatsArgs {
     #[command(flatten)]
     pub source: SceneSource,
-    /// Simulation time, in seconds.
+    /// Simulation time, in seconds, in [-1e7, 1e7].
     #[arg(long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true)]
     pub time: f64,
 }
@@ -65,17 +65,20 @@ pub struct RenderArgs {
     /// Output file: `.png` for one frame, `.gif` for an animation (with --frames).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
-    /// Simulation time of the (first) frame, in seconds.
-    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, allow_negative_numbers = true)]
-    pub time: f64,
+    /// Simulation time of the frame (of frame 0 of an animation), in seconds, in [-1e7, 1e7].
+    /// Default 0. Not with --obj (a mesh does not move).
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub time: Option<f64>,
     /// Image size as WIDTHxHEIGHT (default: the scene's [render] size, 1280x720 unless set).
     #[arg(long, value_name = "WxH")]
     pub size: Option<String>,
-    /// Number of frames of a GIF animation, 1 to 10000.
-    #[arg(long, value_name = "N")]
-    pub frames: Option<u32>,
-    /// Frames per second of the animation, in (0, 100]; frame k shows time + k / fps.
-    #[arg(long, value_name = "F", default_value_t = 24.0)]
+    /// The frames of a GIF animation: a count N (frames 0 to N-1) or a range A..B (both
+    /// included), as in `export` and `bake`; frame k shows time --time + k / fps. At most 10000.
+    #[arg(long, value_name = "N|A..B", allow_hyphen_values = true)]
+    pub frames: Option<String>,
+    /// Frames per second, in (0, 1000] as in `export` and `bake`; a GIF plays at most 50 (its
+    /// delays are hundredths of a second, alternated so that the rate is exact on average).
+    #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]
     pub fps: f64,
     /// Worker threads, 0 = one per core (default: the scene's render.threads). The image does not
     /// depend on it.
@@ -97,18 +100,18 @@ pub struct RenderArgs {
     pub supersample: Option<u32>,
     /// Comparison mode: render this Wavefront OBJ mesh (v, vn, f) instead of a scene; needs
     /// --camera. Writes the framebuffer without gamma encoding, as OpenGL's RGBA8 would hold it.
-    #[arg(long, value_name = "MESH.obj", group = "SceneSource", requires = "camera")]
+    #[arg(long, value_name = "MESH.obj", group = "SceneSource")]
     pub obj: Option<PathBuf>,
     /// With --obj: camera JSON {"eye","target","up","fov_y_deg","near","far","width","height"}.
-    #[arg(long, value_name = "CAMERA.json", requires = "obj")]
+    #[arg(long, value_name = "CAMERA.json")]
     pub camera: Option<PathBuf>,
     /// With --obj: directional light JSON {"dir","color","ambient","base_color","background"}
     /// (linear colours; dir is where the light travels); default a white light from above.
-    #[arg(long, value_name = "LIGHT.json", requires = "obj")]
+    #[arg(long, value_name = "LIGHT.json")]
     pub light: Option<PathBuf>,
     /// With --obj: render N times and print the median render time as {"median_ms": ...}
     /// (file loading and writing excluded). N in [1, 10000].
-    #[arg(long, value_name = "N", requires = "obj")]
+    #[arg(long, value_name = "N")]
     pub repeat: Option<u32>,
 }
 
@@ -185,7 +188,7 @@ pub struct ExportArgs {
     /// Mesh format: obj, gltf (JSON + .bin) or glb (default: from the --out extension).
     #[arg(long, value_name = "FORMAT")]
     pub format: Option<String>,
-    /// Simulation time in seconds (one file).
+    /// Simulation time in seconds (one file), in [-1e7, 1e7].
     #[arg(
         long,
         value_name = "SECONDS",
@@ -194,8 +197,9 @@ pub struct ExportArgs {
         conflicts_with = "frames"
     )]
     pub time: f64,
-    /// Frames A..B (inclusive) to export, one file each, frame k at time k / fps.
-    #[arg(long, value_name = "A..B", allow_hyphen_values = true)]
+    /// The frames to export, one file each: a count N (frames 0 to N-1) or a range A..B (both
+    /// included), frame k at time k / fps.
+    #[arg(long, value_name = "N|A..B", allow_hyphen_values = true)]
     pub frames: Option<String>,
     /// Frames per second for --frames, in (0, 1000].
     #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]
@@ -210,8 +214,9 @@ pub struct ExportArgs {
 pub struct BakeArgs {
     #[command(flatten)]
     pub source: SceneSource,
-    /// Frames A..B to bake, both included (0..0 is one frame), frame k at time k / fps.
-    #[arg(long, value_name = "A..B", allow_hyphen_values = true)]
+    /// The frames to bake: a count N (frames 0 to N-1) or a range A..B (both included: 0..0 is one
+    /// frame), frame k at time k / fps.
+    #[arg(long, value_name = "N|A..B", allow_hyphen_values = true)]
     pub frames: String,
     /// Frames per second, in (0, 1000].
     #[arg(long, value_name = "F", default_value_t = 24.0, allow_negative_numbers = true)]
@@ -222,8 +227,11 @@ pub struct BakeArgs {
     /// Skip frames whose files all exist (a killed or partial bake continues where it stopped).
     #[arg(long)]
     pub resume: bool,
-    /// Bake only shard I of N: frames A+I, A+I+N, ... (I from 0).
-    #[arg(long, value_name = "I/N")]
+    /// Bake only shard I of N: frames A+I, A+I+N, ... (I from 0). `auto` takes I and N from a
+    /// Slurm job array (SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT), a
+    /// Kubernetes indexed job (JOB_COMPLETION_INDEX; N from `auto/N` or SWELL_SHARD_COUNT) or an
+    /// AWS Batch array job (AWS_BATCH_JOB_ARRAY_INDEX, AWS_BATCH_JOB_ARRAY_SIZE).
+    #[arg(long, value_name = "I/N|auto[/N]")]
     pub shard: Option<String>,
     /// Also write PNG maps with 8 or 16 bits per sample (16 if no value is given).
     #[arg(long, value_name = "BITS", num_args = 0..=1, default_missing_value = "16")]
@@ -238,6 +246,11 @@ pub struct BakeArgs {
     /// EXR compression: none, rle, zip or piz (all lossless).
     #[arg(long, value_name = "C", default_value = "none")]
     pub exr_compression: String,
+    /// Space of the normal maps: world (unit normal in swell's axes, +Y up), tangent-gl or
+    /// tangent-dx (tangent space of the flat patch, T = +X, N = +Y, green towards the image's top
+    /// for OpenGL / Blender / Unity / Godot, towards its bottom for DirectX / Unreal).
+    #[arg(long, value_name = "SPACE", default_value = "world")]
+    pub normal_space: String,
     /// Worker threads, 0 = one per core. The files do not depend on it.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: u32,
@@ -255,6 +268,7 @@ pub struct ViewArgs {
     #[arg(long, value_name = "FILE.png", requires = "exit_after_frames")]
     pub screenshot: Option<PathBuf>,
     /// Close the window after rendering N frames (for scripted checks), N >= 1.
-    #[arg(long, value_name = "N")]
-    pub exit_after_frames: Option<u32>,
+    // Negative numbers reach our own check, which names the flag (clap would call `-3` an unknown argument).
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    pub exit_after_frames: Option<i64>,
 }

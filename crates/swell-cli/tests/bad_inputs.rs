@@ -120,7 +120,8 @@ fn bad_command_lines_are_refused_by_name_without_output() {
     let out = tempfile::tempdir().unwrap();
     let png = out.path().join("t.png");
     let gif = out.path().join("t.gif");
-    let (p, g) = (png.to_str().unwrap(), gif.to_str().unwrap());
+    let mesh = out.path().join("t.obj");
+    let (p, g, m) = (png.to_str().unwrap(), gif.to_str().unwrap(), mesh.to_str().unwrap());
     let cases: &[(&[&str], &str)] = &[
         (&["terrain", "--generator", "noise", "--size", "5000", "--out", p], "terrain.size = 5000"),
         (&["terrain", "--generator", "noise", "--size", "99999999999", "--out", p], "--size"),
@@ -141,7 +142,25 @@ fn bad_command_lines_are_refused_by_name_without_output() {
         (&["render", "--preset", "sea", "--time", "nan", "--out", p], "--time"),
         (&["render", "--preset", "sea", "--time", "inf", "--out", p], "--time"),
         (&["render", "--preset", "sea", "--out", g, "--frames", "10001"], "--frames = 10001"),
-        (&["render", "--preset", "sea", "--out", g, "--frames", "0"], "--frames = 0"),
+        (&["render", "--preset", "sea", "--out", g, "--frames", "0"], "--frames: 0 frames"),
+        // issue 22: one meaning per flag, no flag ignored, times in a documented range.
+        (&["render", "--preset", "sea", "--out", g, "--frames", "0..x"], "--frames: `0..x` is not a frame count"),
+        (&["render", "--preset", "sea", "--out", g, "--frames", "4", "--fps", "60"], "(0, 50] for a GIF"),
+        (
+            &["render", "--preset", "sea", "--out", g, "--frames", "4", "--fps", "1001"],
+            "--fps = 1001 is outside (0, 1000]",
+        ),
+        (&["render", "--preset", "sea", "--time", "1e300", "--out", p], "--time = 1e300 is outside [-1e7, 1e7]"),
+        (&["render", "--preset", "sea", "--time=-2e7", "--out", p], "--time = -20000000 is outside"),
+        (&["render", "--preset", "springs", "--time", "1e6", "--out", p], "it would need 2,500,149 steps"),
+        (&["render", "--preset", "sea", "--camera", "/nonexistent.json", "--out", p], "--camera: belongs to the --obj"),
+        (&["render", "--preset", "sea", "--light", "/nonexistent.json", "--out", p], "--light: belongs to the --obj"),
+        (&["render", "--preset", "sea", "--repeat", "3", "--out", p], "--repeat: belongs to the --obj"),
+        (&["bake", "--preset", "sea", "--frames", "2", "--png-range", "3", "--out", p], "--png-range: sets the range"),
+        (&["bake", "--preset", "sea", "--frames", "0..9999999", "--fps", "0.5", "--out", p], "the last frame's time"),
+        (&["export", "--preset", "sea", "--time", "1e300", "--out", m], "--time = 1e300"),
+        (&["export", "--preset", "sea", "--frames", "0", "--out", m], "--frames: 0 frames"),
+        (&["stats", "--preset", "ocean", "--time", "1e300"], "--time = 1e300"),
         (&["render", "--preset", "sea", "--out", g, "--frames", "2", "--fps", "nan"], "--fps"),
         (&["render", "--preset", "sea", "--out", g, "--frames", "2", "--fps", "0"], "--fps"),
         (&["render", "--preset", "no-such-preset", "--out", p], "no-such-preset"),
@@ -176,6 +195,8 @@ fn bad_obj_camera_and_light_files_are_refused_by_name_without_output() {
     let (good_obj, good_cam) = (f("mesh-good.obj"), f("camera-good.json"));
     let mut failures = Vec::new();
     let objs: &[(&str, &str)] = &[
+        // issue 22: a JSON file given as the mesh renders nothing, so it is refused.
+        ("camera-good.json", "no triangles"),
         ("obj-index-out-of-range.obj", "vertex index 4 is outside [1, 3]"),
         ("obj-negative-index-out-of-range.obj", "vertex index -4 is outside"),
         ("obj-huge-index.obj", "is not a vertex index"),

@@ -1,12 +1,12 @@
 //! `swell bake` and `swell export` through the real binary in a temporary directory: kill and
 //! resume, shards, bad input, and the files the commands promise.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
-const SWELL: &str = env!("CARGO_BIN_EXE_swell");
+mod common;
+use common::{files, stderr, swell, SWELL};
 
 /// The sea preset on a grid of `cells` x `cells`, written to `dir/sea.toml`.
 fn sea_scene(dir: &Path, cells: u32) -> PathBuf {
@@ -16,24 +16,6 @@ fn sea_scene(dir: &Path, cells: u32) -> PathBuf {
     let path = dir.join("sea.toml");
     std::fs::write(&path, text).unwrap();
     path
-}
-
-fn swell(args: &[&str]) -> Output {
-    Command::new(SWELL).args(args).output().unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Every visible file of `dir` (temporaries of killed runs start with a dot) and its bytes.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap())
-        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
-        .map(|e| (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap()))
-        .collect()
 }
 
 #[test]
@@ -134,10 +116,11 @@ fn bad_frame_ranges_and_unwritable_outputs_are_clear_errors_and_write_nothing() 
     let out_s = out.to_str().unwrap();
     for (frames, expect) in [
         ("9..3", "ends before it starts"),
-        ("abc", "is not A..B"),
-        ("-2..5", "is not A..B"),
-        ("2..", "is not A..B"),
-        ("1.5..3", "is not A..B"),
+        ("abc", "or a range A..B"),
+        ("-2..5", "or a range A..B"),
+        ("2..", "or a range A..B"),
+        ("1.5..3", "or a range A..B"),
+        ("0", "0 frames"),
         ("0..99999999999", "is outside"),
     ] {
         let o = swell(&["bake", "--scene", scene, "--frames", frames, "--out", out_s]);
@@ -233,4 +216,173 @@ fn export_writes_every_format_and_one_file_per_frame() {
         let o = swell(&a);
         assert!(!o.status.success() && stderr(&o).contains(expect), "{args:?}: {}", stderr(&o));
     }
+}
+
+/// Every variable `--shard auto` reads, removed so the test's own environment cannot leak in.
+const ARRAY_JOB_VARS: [&str; 9] = [
+    "SLURM_ARRAY_TASK_ID",
+    "SLURM_ARRAY_TASK_MIN",
+    "SLURM_ARRAY_TASK_STEP",
+    "SLURM_ARRAY_TASK_COUNT",
+    "JOB_COMPLETION_INDEX",
+    "AWS_BATCH_JOB_ARRAY_INDEX",
+    "AWS_BATCH_JOB_ARRAY_SIZE",
+    "SWELL_SHARD_COUNT",
+    "SLURM_ARRAY_TASK_MAX",
+];
+
+/// `swell args` with exactly the array-job variables `vars` set.
+fn swell_in_job(args: &[&str], vars: &[(&str, &str)]) -> Output {
+    let mut c = Command::new(SWELL);
+    c.args(args);
+    for v in ARRAY_JOB_VARS {
+        c.env_remove(v);
+    }
+    c.envs(vars.iter().copied());
+    c.output().unwrap()
+}
+
+#[test]
+fn shard_auto_takes_the_slurm_array_tasks_and_says_so() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 12);
+    let scene = scene.to_str().unwrap();
+    let (farm, whole) = (tmp.path().join("farm"), tmp.path().join("whole"));
+    let args = |out: &Path| -> Vec<String> {
+        ["bake", "--scene", scene, "--frames", "2..9", "--shard", "auto", "--quiet", "--out"]
+            .iter()
+            .map(|s| s.to_string())
+            .chain([out.to_str().unwrap().to_string()])
+            .collect()
+    };
+    // sbatch --array=1-3: task ids 1, 2, 3 are shards 0, 1, 2.
+    for id in ["3", "1", "2"] {
+        let a = args(&farm);
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        let o = swell_in_job(
+            &a,
+            &[
+                ("SLURM_ARRAY_TASK_ID", id),
+                ("SLURM_ARRAY_TASK_MIN", "1"),
+                ("SLURM_ARRAY_TASK_MAX", "3"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ],
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        let shard = id.parse::<u32>().unwrap() - 1;
+        let e = stderr(&o);
+        assert!(e.contains(&format!("shard {shard}/3 from the Slurm job array")), "{e}");
+        assert!(e.contains(&format!("SLURM_ARRAY_TASK_ID = {id}")) && e.contains("SLURM_ARRAY_TASK_COUNT = 3"), "{e}");
+    }
+    let o = swell(&["bake", "--scene", scene, "--frames", "2..9", "--quiet", "--out", whole.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (farm, whole) = (files(&farm), files(&whole));
+    assert_eq!(whole.len(), 1 + 8 * 2);
+    assert!(farm == whole, "the three array tasks differ from the whole bake");
+
+    // Kubernetes: the index, with the count from auto/N or SWELL_SHARD_COUNT.
+    let k8s = tmp.path().join("k8s");
+    let k8s_s = k8s.to_str().unwrap();
+    for (index, shard, vars) in [("0", "auto/2", vec![]), ("1", "auto", vec![("SWELL_SHARD_COUNT", "2")])] {
+        let mut v = vars.clone();
+        v.push(("JOB_COMPLETION_INDEX", index));
+        let o = swell_in_job(
+            &["bake", "--scene", scene, "--frames", "2..9", "--shard", shard, "--quiet", "--out", k8s_s],
+            &v,
+        );
+        assert!(o.status.success() && stderr(&o).contains("Kubernetes indexed job"), "{}", stderr(&o));
+    }
+    assert!(files(&k8s) == whole, "the two Kubernetes pods differ from the whole bake");
+}
+
+#[test]
+fn shard_auto_errors_name_the_variable_value_and_range_and_write_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 8);
+    let scene = scene.to_str().unwrap();
+    let out = tmp.path().join("out");
+    let out_s = out.to_str().unwrap();
+    for (shard, vars, expect) in [
+        ("auto", vec![], "no array-job variable is set"),
+        ("auto", vec![("JOB_COMPLETION_INDEX", "3")], "JOB_COMPLETION_INDEX = 3) but it does not say how many tasks"),
+        ("auto/4", vec![("JOB_COMPLETION_INDEX", "4")], "--shard auto: JOB_COMPLETION_INDEX = 4 is outside [0, 3]"),
+        (
+            "auto",
+            vec![("SLURM_ARRAY_TASK_ID", "17"), ("SLURM_ARRAY_TASK_MIN", "1"), ("SLURM_ARRAY_TASK_COUNT", "16")],
+            "--shard auto: SLURM_ARRAY_TASK_ID = 17 is outside [1, 16]",
+        ),
+        (
+            "auto",
+            vec![("AWS_BATCH_JOB_ARRAY_INDEX", "two"), ("AWS_BATCH_JOB_ARRAY_SIZE", "4")],
+            "AWS_BATCH_JOB_ARRAY_INDEX: `two`",
+        ),
+        ("auto", vec![("AWS_BATCH_JOB_ARRAY_INDEX", "1")], "AWS_BATCH_JOB_ARRAY_SIZE is not set"),
+        ("auto/x", vec![("JOB_COMPLETION_INDEX", "1")], "--shard auto/N: `x` is not a whole number"),
+    ] {
+        let o = swell_in_job(&["bake", "--scene", scene, "--frames", "0..3", "--shard", shard, "--out", out_s], &vars);
+        assert!(!o.status.success(), "{shard} {vars:?} was accepted");
+        assert!(stderr(&o).contains(expect), "{shard} {vars:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{shard} {vars:?} left output behind");
+    }
+}
+
+#[test]
+fn normal_space_is_checked_recorded_and_part_of_what_resume_compares() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = sea_scene(tmp.path(), 8);
+    let scene = scene.to_str().unwrap();
+    let out = tmp.path().join("out");
+    let out_s = out.to_str().unwrap();
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..1", "--normal-space", "tangent", "--out", out_s]);
+    assert!(!o.status.success(), "--normal-space tangent was accepted");
+    assert!(
+        stderr(&o).contains("--normal-space: `tangent` is not a normal space; valid: world, tangent-gl, tangent-dx")
+    );
+    assert!(!out.exists());
+
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..1", "--normal-space", "tangent-dx", "--out", out_s]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let manifest: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("bake.json")).unwrap()).unwrap();
+    assert_eq!(manifest["normal_space"], "tangent-dx");
+    assert_eq!(manifest["manifest_version"], 2);
+    assert_eq!(manifest["axes"]["to_blender"]["matrix"], serde_json::json!([[1, 0, 0], [0, 0, -1], [0, 1, 0]]));
+    assert_eq!(manifest["units"]["length"], "metre");
+    let before = files(&out);
+    // Resuming with another normal space is refused, naming the key.
+    let o = swell(&["bake", "--scene", scene, "--frames", "0..1", "--resume", "--out", out_s]);
+    assert!(!o.status.success() && stderr(&o).contains("`normal_space`"), "{}", stderr(&o));
+    assert!(files(&out) == before);
+    // The same options resume.
+    let o = swell(&[
+        "bake",
+        "--scene",
+        scene,
+        "--frames",
+        "0..1",
+        "--normal-space",
+        "tangent-dx",
+        "--resume",
+        "--out",
+        out_s,
+    ]);
+    assert!(o.status.success() && stderr(&o).contains("2 frames already complete"), "{}", stderr(&o));
+
+    // A directory baked by a swell before manifest_version 2 is refused with the reason.
+    let mut old = manifest.clone();
+    old.as_object_mut().unwrap().remove("manifest_version");
+    std::fs::write(out.join("bake.json"), serde_json::to_vec_pretty(&old).unwrap()).unwrap();
+    let o = swell(&[
+        "bake",
+        "--scene",
+        scene,
+        "--frames",
+        "0..1",
+        "--normal-space",
+        "tangent-dx",
+        "--resume",
+        "--out",
+        out_s,
+    ]);
+    assert!(!o.status.success(), "an old manifest was resumed");
+    assert!(stderr(&o).contains("has manifest_version 1, this swell writes 2"), "{}", stderr(&o));
 }

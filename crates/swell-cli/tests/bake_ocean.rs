@@ -3,12 +3,12 @@
 //! bytes, foam included; `--tile` only where the water repeats; scenes with only `[water]`; the
 //! warning for a loop too short for the sea.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 use std::time::{Duration, Instant};
 
-const SWELL: &str = env!("CARGO_BIN_EXE_swell");
+mod common;
+use common::{files, stderr, swell, SWELL};
 
 /// A water-only scene: a rough 128² FFT ocean with foam over its own 96 m patch.
 const OCEAN: &str = "[water]\nmodel = \"fft\"\ngrid = 128\npatch_size = 96.0\nwind_speed = 20.0\n\
@@ -18,24 +18,6 @@ fn write_scene(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path
-}
-
-fn swell(args: &[&str]) -> Output {
-    Command::new(SWELL).args(args).output().unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Every visible file of `dir` and its bytes.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap())
-        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
-        .map(|e| (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap()))
-        .collect()
 }
 
 fn bake_args(scene: &Path, frames: &str, out: &Path, extra: &[&str]) -> Vec<String> {
@@ -173,18 +155,7 @@ fn read_exr_y(path: &Path) -> Vec<f32> {
 fn tile_is_refused_with_the_reason_where_the_water_does_not_repeat() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
-    let tile = |scene: &Path| {
-        swell(&[
-            "bake",
-            "--scene",
-            scene.to_str().unwrap(),
-            "--frames",
-            "0..0",
-            "--tile",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-    };
+    let tile = |scene: &Path| Command::new(SWELL).args(bake_args(scene, "0..0", &out, &["--tile"])).output().unwrap();
     let o = tile(&write_scene(tmp.path(), "ok.toml", OCEAN));
     assert!(o.status.success(), "{}", stderr(&o));
     std::fs::remove_dir_all(&out).unwrap();
@@ -208,16 +179,7 @@ fn a_loop_too_short_for_the_sea_warns_on_stderr() {
     let out = tmp.path().join("out");
     let bake = |extra: &str| {
         let scene = write_scene(tmp.path(), "l.toml", &format!("{OCEAN}{extra}"));
-        swell(&[
-            "bake",
-            "--scene",
-            scene.to_str().unwrap(),
-            "--frames",
-            "0..0",
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ])
+        Command::new(SWELL).args(bake_args(&scene, "0..0", &out, &[])).output().unwrap()
     };
     let o = bake("loop_period = 2.0\n");
     assert!(o.status.success(), "{}", stderr(&o));

@@ -107,7 +107,23 @@ fn bad_input_gives_a_clear_error_and_no_output() {
     fails_cleanly(
         d,
         &["render", "--scene", "range.toml", "--out", "x.png"],
-        "water.waves[2].steepness = 1.7 is outside [0, 1]",
+        // issue 22: a validation error names the file, as a parse error does.
+        "error: range.toml: water.waves[2].steepness = 1.7 is outside [0, 1]",
+    );
+    // A wrong type: one line, the key path once (toml's own `in `waves.speed`` line is dropped).
+    std::fs::write(d.join("type.toml"), "[water]\nmodel = 'sines'\n[[water.waves]]\namplitude = 'x'\n").unwrap();
+    let o = swell(d, &["render", "--scene", "type.toml", "--out", "x.png"]);
+    let err = stderr(&o);
+    assert!(err.starts_with("error: type.toml: water.waves[0].amplitude: invalid type"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    // A texture file that cannot be read is named with its key, beside the scene file.
+    std::fs::create_dir(d.join("scenes")).unwrap();
+    std::fs::write(d.join("scenes/tex.toml"), "[water]\nmodel = 'sines'\n[water.material]\ntexture = 'gone.png'\n")
+        .unwrap();
+    fails_cleanly(
+        d,
+        &["render", "--scene", "scenes/tex.toml", "--out", "x.png"],
+        "water.material.texture: scenes/gone.png: ",
     );
     fails_cleanly(d, &["render", "--scene", "binary.toml", "--out", "x.png"], "not UTF-8");
     fails_cleanly(d, &["render", "--scene", "missing.toml", "--out", "x.png"], "missing.toml");
@@ -115,12 +131,23 @@ fn bad_input_gives_a_clear_error_and_no_output() {
     fails_cleanly(d, &["render", "--preset", "sea", "--out", "x.jpg"], ".png");
     fails_cleanly(d, &["render", "--preset", "sea", "--size", "0x10", "--out", "x.png"], "--size width = 0 is outside");
     fails_cleanly(d, &["render", "--preset", "sea", "--size", "big", "--out", "x.png"], "WIDTHxHEIGHT");
-    fails_cleanly(d, &["render", "--preset", "sea", "--frames", "0", "--out", "x.gif"], "--frames = 0 is outside");
+    fails_cleanly(d, &["render", "--preset", "sea", "--frames", "0", "--out", "x.gif"], "--frames: 0 frames");
     fails_cleanly(d, &["render", "--preset", "sea", "--frames", "3", "--fps", "0", "--out", "x.gif"], "--fps");
     fails_cleanly(d, &["render", "--preset", "sea", "--out", "x.gif"], "--frames");
     fails_cleanly(d, &["render", "--preset", "sea", "--time", "nan", "--out", "x.png"], "--time");
     fails_cleanly(d, &["render", "--preset", "sea", "--threads", "100000", "--out", "x.png"], "--threads");
     fails_cleanly(d, &["render", "--out", "x.png"], "--preset");
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_output_that_cannot_be_created_names_the_output_not_the_temporary_file() {
+    // sysfs takes no regular files, even from root.
+    let dir = tempfile::tempdir().unwrap();
+    let o = swell(dir.path(), &["render", "--preset", "sea", "--size", "16x9", "--out", "/sys/swell-test.png"]);
+    let err = stderr(&o);
+    assert!(!o.status.success() && err.starts_with("error: /sys/swell-test.png: "), "{err}");
+    assert!(!err.contains(".swell-"), "the temporary file is swell's business: {err}");
 }
 
 #[cfg(unix)]

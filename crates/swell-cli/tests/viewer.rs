@@ -366,3 +366,110 @@ fn a_click_on_the_spring_mesh_drops_a_disturbance_there() {
     let out = wait_with_timeout(child, Duration::from_secs(30));
     assert!(out.status.success(), "viewer exit: {}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// The summary `--exit-after-frames` prints: frames, fps, sim and render (ms).
+fn summary(stderr: &str) -> (u32, f64, f64, f64) {
+    let line = stderr.lines().find(|l| l.contains(" frames at ")).unwrap_or_else(|| panic!("no summary: {stderr}"));
+    let number_before = |marker: &str| -> f64 {
+        let head = &line[..line.find(marker).unwrap_or_else(|| panic!("no `{marker}` in {line}"))];
+        head.trim_end()
+            .rsplit(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap_or_else(|_| panic!("bad number before {marker}: {line}"))
+    };
+    let number_after = |marker: &str| -> f64 {
+        let tail = &line[line.find(marker).unwrap_or_else(|| panic!("no `{marker}` in {line}")) + marker.len()..];
+        tail.trim_start()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap_or_else(|_| panic!("bad number after {marker}: {line}"))
+    };
+    let frames = number_before(" frames at ") as u32;
+    (frames, number_before(" fps"), number_after("| sim "), number_after("| render "))
+}
+
+/// `--exit-after-frames 60` renders and shows exactly 60 frames, with or without a screenshot, and
+/// the rate it reports is one the render thread can reach: frames are simulated and rendered one
+/// after the other there, so no more than 1 / (sim + render) of them per second (issue 22: the
+/// count was of UI repaints, 61 frames and more fps than that).
+#[test]
+fn exit_after_frames_counts_exactly_the_frames_rendered_and_shown() {
+    let Some(x) = start_xvfb(&["Xvfb"]) else { return };
+    let dir = tempfile::tempdir().unwrap();
+    for screenshot in [false, true] {
+        let shot = dir.path().join("ocean.png");
+        let mut cmd = swell(&x.display);
+        cmd.args(["view", "--preset", "ocean", "--exit-after-frames", "60"]);
+        if screenshot {
+            cmd.arg("--screenshot").arg(&shot);
+        }
+        let child = cmd.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+        let out = wait_with_timeout(child, STARTUP + Duration::from_secs(120));
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "swell view failed: {stderr}");
+        let (frames, fps, sim, render) = summary(&stderr);
+        eprintln!("ocean, screenshot {screenshot}: {}", stderr.lines().last().unwrap_or(""));
+        assert_eq!(frames, 60, "screenshot {screenshot}: {stderr}");
+        let ceiling = 1000.0 / (sim + render);
+        assert!(fps <= ceiling * 1.05, "{fps} fps reported, but sim + render allow at most {ceiling:.1}: {stderr}");
+        assert!(fps > 0.0, "{stderr}");
+        assert_eq!(shot.exists(), screenshot);
+    }
+}
+
+/// Runs `swell view ARGS` in `dir` without a display (nothing may get as far as a window).
+fn view_refused(dir: &Path, args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_swell"))
+        .current_dir(dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .arg("view")
+        .args(args)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!out.status.success(), "swell view {args:?} was accepted: {stderr}");
+    stderr
+}
+
+/// Hostile values of the viewer's flags: each is refused before any window or file, with a
+/// message naming the flag (and, for `--screenshot`, the value and the valid choice).
+#[test]
+fn hostile_viewer_flags_are_refused_by_name_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("folder.png")).unwrap();
+    let cases: &[(&[&str], &str, &[&str])] = &[
+        (&["--exit-after-frames", "0"], "--exit-after-frames", &["0", "[1, 4294967295]"]),
+        // `--exit-after-frames -3` (a space) is clap's "unexpected argument '-3'", before the flag
+        // is known; with `=` the value reaches the flag.
+        (&["--exit-after-frames=-3"], "--exit-after-frames", &["-3"]),
+        (&["--exit-after-frames", "lots"], "--exit-after-frames", &["lots"]),
+        (&["--exit-after-frames", "99999999999"], "--exit-after-frames", &["99999999999"]),
+        (&["--exit-after-frames", ""], "--exit-after-frames", &[]),
+        (&["--screenshot", "shot.jpg", "--exit-after-frames", "5"], "--screenshot", &["shot.jpg", ".png"]),
+        (&["--screenshot", "shot.PNG.gif", "--exit-after-frames", "5"], "--screenshot", &["shot.PNG.gif", ".png"]),
+        (&["--screenshot", "shot", "--exit-after-frames", "5"], "--screenshot", &["shot", ".png"]),
+        (&["--screenshot", "", "--exit-after-frames", "5"], "--screenshot", &[]),
+        (&["--screenshot", "no/such/dir/shot.png", "--exit-after-frames", "5"], "--screenshot", &["no/such/dir"]),
+        (&["--screenshot", "folder.png", "--exit-after-frames", "5"], "--screenshot", &["folder.png", "directory"]),
+        (&["--screenshot", "shot.png"], "--exit-after-frames", &[]),
+        (&["--screenshot", "shot.png", "--exit-after-frames", "0"], "--exit-after-frames", &["0"]),
+    ];
+    for (args, flag, also) in cases {
+        let mut full = vec!["--preset", "sea"];
+        full.extend_from_slice(args);
+        let stderr = view_refused(dir.path(), &full);
+        assert!(stderr.contains(flag), "{args:?}: the message does not name {flag}: {stderr}");
+        for a in *also {
+            assert!(stderr.contains(a), "{args:?}: the message does not say `{a}`: {stderr}");
+        }
+        assert!(!stderr.contains("DISPLAY"), "{args:?} got as far as opening a window: {stderr}");
+        let mut left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        left.retain(|n| n != "folder.png");
+        assert!(left.is_empty(), "{args:?} left {left:?} behind");
+    }
+}

@@ -83,7 +83,9 @@ pub struct ViewerApp {
     options: ViewerOptions,
     exit: ExitState,
     last_frame: Option<Instant>,
-    /// Frames rendered since start (counts towards `--exit-after-frames`).
+    /// When the window showed the last rendered frame (the start of the next frame interval).
+    last_shown: Option<Instant>,
+    /// Rendered frames the window has shown since start (what `--exit-after-frames` counts).
     rendered: u32,
     /// The last simulation or rendering error, shown in the status line.
     run_error: Option<String>,
@@ -106,6 +108,7 @@ impl ViewerApp {
             options,
             exit: ExitState::Running,
             last_frame: None,
+            last_shown: None,
             rendered: 0,
             run_error: None,
             outcome,
@@ -203,36 +206,62 @@ impl ViewerApp {
             self.move_camera(self.rig.home);
         }
         if let Some(request) = out.file {
-            let message = match request {
-                FileRequest::SaveScene(p) => self.editor.save(&p).map(|()| format!("saved {}", p.display())),
-                FileRequest::LoadScene(p) => self.editor.load(&p).map(|()| {
-                    self.rig = CameraRig::new(self.editor.scene().camera);
-                    format!("loaded {}", p.display())
-                }),
-                FileRequest::SaveView(p) => self.view.save_png(&p).map(|()| {
-                    let [w, h] = self.view.size();
-                    format!("saved the {w}x{h} view to {}", p.display())
-                }),
-                // Generators are deterministic: the spec rebuilds the very field on screen.
-                FileRequest::SaveHeightmap(p) => match &self.editor.scene().terrain {
-                    Some(spec) => {
-                        TerrainBody::new(spec).and_then(|t| swell::terrain::write_heightmap(&p, &t.field)).map(|s| {
-                            format!("saved the heightmap to {} ({} m per grey range)", p.display(), s.height_scale)
-                        })
-                    }
-                    None => Err(Error::invalid("terrain", "there is no terrain to save")),
-                },
-                FileRequest::SaveWindow(p) => {
-                    ctx.send_viewport_cmd(ViewportCommand::Screenshot(egui::UserData::new(ScreenshotPurpose::Panel(
-                        p,
-                    ))));
-                    Ok("taking a screenshot of the window...".into())
-                }
-            };
-            self.panels.files.message = Some(match message {
+            let heightmap = matches!(request, FileRequest::SaveHeightmap(_) | FileRequest::LoadHeightmap(_));
+            let message = match self.file_action(ctx, request) {
                 Ok(m) => FileMessage::Done(m),
-                Err(e) => FileMessage::Failed(e.to_string()),
-            });
+                Err(e) => FileMessage::Failed(e),
+            };
+            // Heightmap outcomes show under the terrain's heightmap row, the others under Files.
+            if heightmap {
+                self.panels.terrain.file_message = Some(message);
+            } else {
+                self.panels.files.message = Some(message);
+            }
+        }
+    }
+
+    /// Does what a file button asked; the outcome names the path: what was written or read, or
+    /// what failed and why.
+    fn file_action(&mut self, ctx: &egui::Context, request: FileRequest) -> std::result::Result<String, String> {
+        let failed = |what: &str, p: &std::path::Path, e: Error| format!("could not {what} {}: {e}", p.display());
+        match request {
+            FileRequest::SaveScene(p) => self
+                .editor
+                .save(&p)
+                .map(|()| format!("saved the scene to {}", p.display()))
+                .map_err(|e| failed("save the scene to", &p, e)),
+            FileRequest::LoadScene(p) => match self.editor.load(&p) {
+                Ok(()) => {
+                    self.rig = CameraRig::new(self.editor.scene().camera);
+                    Ok(format!("loaded the scene {}", p.display()))
+                }
+                Err(e) => Err(failed("load the scene", &p, e)),
+            },
+            FileRequest::SaveView(p) => match self.view.save_png(&p) {
+                Ok(()) => {
+                    let [w, h] = self.view.size();
+                    Ok(format!("saved the {w}x{h} view to {}", p.display()))
+                }
+                Err(e) => Err(failed("save the view to", &p, e)),
+            },
+            // Generators are deterministic: the spec rebuilds the very field on screen.
+            FileRequest::SaveHeightmap(p) => match &self.editor.scene().terrain {
+                Some(spec) => TerrainBody::new(spec)
+                    .and_then(|t| swell::terrain::write_heightmap(&p, &t.field))
+                    .map(|s| format!("saved the heightmap to {} ({} m per grey range)", p.display(), s.height_scale))
+                    .map_err(|e| failed("save the heightmap to", &p, e)),
+                None => {
+                    Err(failed("save the heightmap to", &p, Error::invalid("terrain", "there is no terrain to save")))
+                }
+            },
+            FileRequest::LoadHeightmap(p) => match self.editor.load_heightmap(&p) {
+                Ok([cols, rows]) => Ok(format!("loaded the heightmap {} ({cols} x {rows} vertices)", p.display())),
+                Err(e) => Err(failed("load the heightmap", &p, e)),
+            },
+            FileRequest::SaveWindow(p) => {
+                ctx.send_viewport_cmd(ViewportCommand::Screenshot(egui::UserData::new(ScreenshotPurpose::Panel(p))));
+                Ok("taking a screenshot of the window...".into())
+            }
         }
     }
 
@@ -259,7 +288,7 @@ impl ViewerApp {
                 ScreenshotPurpose::Panel(p) => {
                     self.panels.files.message = Some(match result(&p) {
                         Ok(()) => FileMessage::Done(format!("saved the {w}x{h} window to {}", p.display())),
-                        Err(e) => FileMessage::Failed(e.to_string()),
+                        Err(e) => FileMessage::Failed(format!("could not save the window to {}: {e}", p.display())),
                     });
                 }
                 ScreenshotPurpose::Exit(p) => {
@@ -341,15 +370,28 @@ impl ViewerApp {
         s
     }
 
+    /// Records the frames the last paints showed: the status line and `--exit-after-frames` count
+    /// these, not UI repaints.
+    fn count_shown_frames(&mut self) {
+        for f in self.view.take_shown() {
+            let interval = self.last_shown.map(|t| f.at.saturating_duration_since(t));
+            self.last_shown = Some(f.at);
+            self.stats.record(interval, f.times.simulate, f.times.render, f.times.upload);
+            self.rendered = self.rendered.saturating_add(1);
+        }
+    }
+
+    /// Whether another frame may be asked for: always, except in a scripted run whose N frames
+    /// are all shown or on their way (so that exactly N frames are rendered and shown).
+    fn frame_budget_left(&self) -> bool {
+        self.options.exit_after_frames.is_none_or(|n| self.rendered.saturating_add(self.view.pending()) < n)
+    }
+
     /// Shows the frame rendered since the last UI frame and asks for the next one if anything it
-    /// depends on changed (always, in the scripted mode).
-    fn draw_view(&mut self, ctx: &egui::Context, size: [u32; 2], frame_dt: std::time::Duration) {
+    /// depends on changed (always, in the scripted mode, until its N frames are asked for).
+    fn draw_view(&mut self, ctx: &egui::Context, size: [u32; 2]) {
         match self.view.collect() {
-            Some((revision, Ok(t))) => {
-                self.stats.record(frame_dt, t.simulate, t.render, t.upload);
-                self.rendered += 1;
-                self.editor.frame_shown(revision);
-            }
+            Some((revision, Ok(_))) => self.editor.frame_shown(revision),
             Some((revision, Err(e))) => {
                 // A commit that does not build is undone and shown as a refusal in the panel, and
                 // a failure of an older revision is left to the current one's frame; otherwise a
@@ -361,7 +403,7 @@ impl ViewerApp {
             }
             None => {}
         }
-        if size[0] == 0 || size[1] == 0 {
+        if size[0] == 0 || size[1] == 0 || !self.frame_budget_left() {
             return;
         }
         let key = FrameKey { revision: self.editor.revision(), time: self.clock.time, size };
@@ -399,6 +441,7 @@ impl eframe::App for ViewerApp {
         let now = Instant::now();
         let frame_dt = self.last_frame.map(|t| now - t).unwrap_or_default();
         self.last_frame = Some(now);
+        self.count_shown_frames();
         self.handle_screenshots(ctx);
         self.handle_keys(ctx);
         self.clock.tick(frame_dt.as_secs_f64());
@@ -426,7 +469,7 @@ impl eframe::App for ViewerApp {
             self.handle_mouse(ui, &response);
             let ppp = ctx.pixels_per_point();
             let size = [(rect.width() * ppp).round() as u32, (rect.height() * ppp).round() as u32];
-            self.draw_view(ctx, size, frame_dt);
+            self.draw_view(ctx, size);
             if self.view.has_frame() {
                 self.view.paint(ui.painter(), rect);
             } else {

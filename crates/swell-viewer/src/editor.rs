@@ -17,7 +17,7 @@
 
 use std::path::Path;
 
-use swell::scene::{Camera, Scene, World};
+use swell::scene::{Camera, Scene, TerrainBody, World};
 use swell::{Error, Result};
 
 /// What [`SceneEditor::frame_failed`] made of a failed frame.
@@ -168,6 +168,23 @@ impl SceneEditor {
     pub fn load(&mut self, path: &Path) -> Result<()> {
         let scene = crate::files::read_scene(path)?;
         self.replace(scene)
+    }
+
+    /// Reads the heightmap PNG at `path` (with its `.toml` sidecar) and makes it the terrain,
+    /// keeping the terrain's placement and look, committed at once; returns the field's vertices
+    /// per side [x, z]. On error (the file cannot be read, or the draft is refused) nothing
+    /// changes.
+    pub fn load_heightmap(&mut self, path: &Path) -> Result<[usize; 2]> {
+        let spec = crate::panels::terrain::use_heightmap(self.draft.terrain.as_ref(), path.to_path_buf());
+        let body = TerrainBody::new(&spec)?;
+        let before = self.draft.terrain.replace(spec);
+        if let Err(e) = self.apply() {
+            // Refused (another value of the draft, or the size limit): the draft goes back.
+            self.draft.terrain = before;
+            let _ = self.apply();
+            return Err(e);
+        }
+        Ok([body.field.cols(), body.field.rows()])
     }
 
     /// Writes the last valid scene to `path` as TOML, atomically.
@@ -321,6 +338,25 @@ mod tests {
             rgba
         };
         assert_eq!(pixels(&e), pixels(&loaded));
+    }
+
+    #[test]
+    fn a_loaded_heightmap_becomes_the_terrain_and_a_bad_one_changes_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("hills.png");
+        let mut hills = crate::panels::terrain::switch_generator(None, Some("hills")).unwrap().unwrap();
+        hills.size = Some(33);
+        swell::terrain::write_heightmap(&png, &hills.build().unwrap()).unwrap();
+        let mut e = sea();
+        assert_eq!(e.load_heightmap(&png).unwrap(), [33, 33]);
+        let t = e.scene().terrain.as_ref().expect("the terrain is the file");
+        assert!(matches!(t.generator, swell::scene::TerrainGenerator::Heightmap(_)), "{t:?}");
+        assert!(!crate::panels::terrain::has_seed(&t.generator), "a file has nothing to regenerate");
+        assert_eq!((e.revision(), e.error()), (1, None));
+        let before = e.scene().clone();
+        let err = e.load_heightmap(&dir.path().join("missing.png")).unwrap_err().to_string();
+        assert!(err.contains("missing.png"), "{err}");
+        assert_eq!((e.scene(), &e.draft, e.revision()), (&before, &before, 1));
     }
 
     #[test]

@@ -17,6 +17,8 @@ use eframe::egui::{self, Rect};
 use eframe::egui_glow;
 use eframe::glow::{self, HasContext};
 
+use crate::live_view::StageTimes;
+
 /// The newest frame and the GL objects that show it, shared with egui's paint callback.
 #[derive(Default)]
 pub struct FrameSlot {
@@ -26,9 +28,23 @@ pub struct FrameSlot {
     pub size: [u32; 2],
     /// `pixels` changed since the last upload.
     dirty: bool,
-    /// How long the last upload took (shown as "upload" in the status line).
-    pub last_upload: Duration,
+    /// Simulation and render times of `pixels` while it waits for its upload.
+    waiting: StageTimes,
+    /// Frames uploaded and blitted since the last [`FrameSlot::take_shown`], oldest first: the
+    /// frames the window really showed (what the status line counts).
+    shown: Vec<ShownFrame>,
+    /// Frames replaced before any paint showed them (never counted as shown).
+    pub dropped: u64,
     gl: Option<GlObjects>,
+}
+
+/// A frame that reached the window: its stage times (upload included) and when it was shown.
+#[derive(Clone, Copy, Debug)]
+pub struct ShownFrame {
+    /// Simulation and render (render thread) and upload (this paint) of this very frame.
+    pub times: StageTimes,
+    /// When its upload finished, at the paint that showed it.
+    pub at: Instant,
 }
 
 /// Two textures used in turn: llvmpipe draws deferred, so writing the texture the previous
@@ -42,11 +58,40 @@ struct GlObjects {
 }
 
 impl FrameSlot {
-    /// Marks `pixels` (of `size`) as a new frame to upload at the next paint.
-    pub fn mark_new(&mut self, size: [u32; 2]) {
+    /// Marks `pixels` (of `size`, made in `times`) as a new frame to upload at the next paint. A
+    /// frame still waiting for its paint is replaced unseen and counted in [`FrameSlot::dropped`].
+    pub fn mark_new(&mut self, size: [u32; 2], times: StageTimes) {
+        if self.dirty {
+            self.dropped += 1;
+        }
         self.size = size;
         self.dirty = true;
+        self.waiting = times;
     }
+
+    /// Whether a frame waits for its paint.
+    pub fn is_waiting(&self) -> bool {
+        self.dirty
+    }
+
+    /// The waiting frame was uploaded (taking `upload`) and is shown from `at` on.
+    #[cfg(test)]
+    fn uploaded(&mut self, upload: Duration, at: Instant) {
+        record_upload(&mut self.dirty, &mut self.shown, self.waiting, upload, at);
+    }
+
+    /// The frames shown since the last call, oldest first.
+    pub fn take_shown(&mut self) -> Vec<ShownFrame> {
+        std::mem::take(&mut self.shown)
+    }
+}
+
+/// Marks the waiting frame (of `waiting` times) as uploaded in `upload` and shown from `at` on.
+/// Takes the slot's fields apart so that the draw can call it while holding its GL objects.
+fn record_upload(dirty: &mut bool, shown: &mut Vec<ShownFrame>, waiting: StageTimes, upload: Duration, at: Instant) {
+    debug_assert!(*dirty, "only a waiting frame is uploaded");
+    *dirty = false;
+    shown.push(ShownFrame { times: StageTimes { upload, ..waiting }, at });
 }
 
 /// A handle to the shared [`FrameSlot`]; cloning it shares the same slot.
@@ -149,8 +194,8 @@ impl FrameSlot {
             }
             gl.bind_texture(glow::TEXTURE_2D, None);
             o.current = i;
-            self.dirty = false;
-            self.last_upload = t0.elapsed();
+            let now = Instant::now();
+            record_upload(&mut self.dirty, &mut self.shown, self.waiting, now - t0, now);
         }
         let [w, h] = o.sizes[o.current];
         if w == 0 || h == 0 {
@@ -174,5 +219,30 @@ impl FrameSlot {
             glow::NEAREST,
         );
         gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_frames_a_paint_uploads_count_as_shown() {
+        let ms = Duration::from_millis;
+        let mut slot = FrameSlot::default();
+        let t = |sim| StageTimes { simulate: ms(sim), render: ms(20), upload: Duration::ZERO };
+        slot.mark_new([4, 4], t(1));
+        slot.mark_new([4, 4], t(2)); // replaced before any paint: dropped, not shown
+        assert_eq!(slot.dropped, 1);
+        let at = Instant::now();
+        slot.uploaded(ms(3), at);
+        assert!(!slot.is_waiting());
+        slot.mark_new([4, 4], t(5));
+        slot.uploaded(ms(4), at + ms(30));
+        let shown = slot.take_shown();
+        assert_eq!(shown.len(), 2);
+        assert_eq!((shown[0].times.simulate, shown[0].times.upload), (ms(2), ms(3)));
+        assert_eq!((shown[1].times.simulate, shown[1].times.upload, shown[1].at - at), (ms(5), ms(4), ms(30)));
+        assert!(slot.take_shown().is_empty());
     }
 }

@@ -77,7 +77,7 @@ pub mod picking;
 pub mod render_thread;
 
 use std::cell::RefCell;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use eframe::egui;
@@ -108,16 +108,46 @@ pub fn initial_view_size(scene: &Scene) -> [f32; 2] {
     [(w * scale).round().max(64.0), (h * scale).round().max(64.0)]
 }
 
+/// Checks the scripted-run flags before anything is loaded, opened or written: `--exit-after-frames`
+/// at least 1, and `--screenshot` (which needs it) a `.png` path in an existing directory. The
+/// screenshot is always PNG: any other extension is refused rather than written as PNG bytes
+/// under a misleading name.
+pub fn check_flags(screenshot: Option<&Path>, exit_after_frames: Option<u32>) -> Result<()> {
+    if exit_after_frames == Some(0) {
+        return Err(Error::out_of_range("--exit-after-frames", 0, "[1, 4294967295]"));
+    }
+    let Some(path) = screenshot else { return Ok(()) };
+    if exit_after_frames.is_none() {
+        return Err(Error::invalid("--screenshot", "needs --exit-after-frames N (when to take it)"));
+    }
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    if ext.as_deref() != Some("png") {
+        return Err(Error::invalid(
+            "--screenshot",
+            format!("\"{}\" must end in .png (the only screenshot format)", path.display()),
+        ));
+    }
+    if path.is_dir() {
+        return Err(Error::invalid("--screenshot", format!("\"{}\" is a directory", path.display())));
+    }
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        return Err(Error::invalid(
+            "--screenshot",
+            format!("\"{}\": directory {} does not exist", path.display(), dir.display()),
+        ));
+    }
+    Ok(())
+}
+
 /// Opens the viewer window and runs until it is closed (`q`, the window's close button, or the end
 /// of `exit_after_frames`). Errors: no display to open a window on, or a failed scripted
 /// screenshot.
 pub fn run(options: ViewerOptions) -> Result<()> {
-    if options.exit_after_frames == Some(0) {
-        return Err(Error::out_of_range("--exit-after-frames", 0, "[1, 4294967295]"));
-    }
-    if options.screenshot.is_some() && options.exit_after_frames.is_none() {
-        return Err(Error::invalid("--screenshot", "needs --exit-after-frames N (when to take it)"));
-    }
+    check_flags(options.screenshot.as_deref(), options.exit_after_frames)?;
     let outcome = Rc::new(RefCell::new(None));
     let app = app::ViewerApp::new(options.clone(), outcome.clone())?;
     let [vw, vh] = initial_view_size(&options.scene);

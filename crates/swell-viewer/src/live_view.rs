@@ -13,7 +13,7 @@ use eframe::egui::{self, Rect};
 use swell::scene::Scene;
 use swell::{Error, Result};
 
-use crate::gl_view::GlView;
+use crate::gl_view::{GlView, ShownFrame};
 use crate::render_thread::{Disturbance, RenderThread, Request};
 
 /// How long each stage of one frame took.
@@ -23,7 +23,7 @@ pub struct StageTimes {
     pub simulate: Duration,
     /// Rasterizing and encoding to RGBA8, on the render thread.
     pub render: Duration,
-    /// Copying into the window's texture (the upload of the previous frame: it happens at paint).
+    /// Copying into the window's texture, at the paint that shows the frame (zero until then).
     pub upload: Duration,
 }
 
@@ -86,8 +86,9 @@ impl LiveView {
     }
 
     /// Takes the frame in flight, waiting for it, and queues it for the next paint. None if no
-    /// frame was in flight; otherwise the scene revision it was asked for, and its stage times or
-    /// why it failed (a scene that does not build, an unstable model).
+    /// frame was in flight; otherwise the scene revision it was asked for, and its simulation and
+    /// render times (its upload is timed when a paint shows it: [`LiveView::take_shown`]) or why
+    /// it failed (a scene that does not build, an unstable model).
     pub fn collect(&mut self) -> Option<(u64, Result<StageTimes>)> {
         if !self.in_flight {
             return None;
@@ -106,12 +107,10 @@ impl LiveView {
                     // The frame goes on screen; the one it replaces (uploaded at the last paint)
                     // becomes the spare buffer of the next request.
                     std::mem::swap(&mut slot.pixels, &mut frame.pixels);
-                    slot.mark_new(frame.size);
-                    let mut times = frame.times;
-                    times.upload = slot.last_upload;
+                    slot.mark_new(frame.size, frame.times);
                     self.spare = frame.pixels;
                     self.shown = true;
-                    Ok(times)
+                    Ok(frame.times)
                 }
                 Err((e, buffer)) => {
                     self.spare = buffer;
@@ -146,6 +145,18 @@ impl LiveView {
         self.requested = Some(key);
         self.in_flight = true;
         Ok(())
+    }
+
+    /// Frames requested or received that no paint has shown yet: the one in flight and the one
+    /// waiting for its upload (0 to 2).
+    pub fn pending(&self) -> u32 {
+        u32::from(self.in_flight) + u32::from(self.screen.lock().is_waiting())
+    }
+
+    /// The frames the window showed (uploaded and blitted) since the last call, oldest first,
+    /// with their own stage times and when each was shown.
+    pub fn take_shown(&self) -> Vec<ShownFrame> {
+        self.screen.lock().take_shown()
     }
 
     /// Forwards a click's dent to the render thread's world (applied before the next frame).

@@ -59,6 +59,15 @@ pub enum Error {
         /// The codec's message.
         message: String,
     },
+    /// An [`Error::OutOfRange`] or [`Error::Invalid`] found in a named source (a scene file, a
+    /// preset): the source first, as parse errors have it.
+    #[error("{source_name}: {error}")]
+    InSource {
+        /// The file path, or `preset NAME`.
+        source_name: String,
+        /// The error, naming the key, value and valid range.
+        error: Box<Error>,
+    },
     /// A simulation that left its stable range (e.g. a spring mesh blowing up).
     #[error("simulation unstable: {0}")]
     Unstable(String),
@@ -82,7 +91,48 @@ impl Error {
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io { path: path.into(), source }
     }
+
+    /// This error as found in `source_name` (a file path or `preset NAME`): key errors get the
+    /// source in front, as parse errors have; errors that already name a file are kept.
+    pub fn in_source(self, source_name: &str) -> Self {
+        match self {
+            Error::OutOfRange { .. } | Error::Invalid { .. } => {
+                Error::InSource { source_name: source_name.into(), error: Box::new(self) }
+            }
+            other => other,
+        }
+    }
+
+    /// The error without the source [`Error::in_source`] added.
+    pub fn without_source(&self) -> &Error {
+        match self {
+            Error::InSource { error, .. } => error,
+            other => other,
+        }
+    }
 }
+
+/// A number as people read it in a message: as typed for everyday sizes, in scientific notation
+/// for huge or tiny ones (`1e300`, not its 301 digits).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Human<T>(pub T);
+
+macro_rules! human_display {
+    ($t:ty) => {
+        impl Display for Human<$t> {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                let x = self.0;
+                if x.is_finite() && x != 0.0 && (x.abs() >= 1e9 || x.abs() < 1e-6) {
+                    write!(f, "{x:e}")
+                } else {
+                    write!(f, "{x}")
+                }
+            }
+        }
+    };
+}
+human_display!(f32);
+human_display!(f64);
 
 /// Checks `lo <= value <= hi` (and that `value` is finite), naming `key` in the error.
 pub fn check_range(key: &str, value: f32, lo: f32, hi: f32) -> Result<()> {
@@ -98,7 +148,7 @@ pub fn check_positive(key: &str, value: f32) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(Error::out_of_range(key, value, "(0, inf)"))
+        Err(Error::out_of_range(key, Human(value), "(0, inf)"))
     }
 }
 
@@ -107,7 +157,7 @@ pub fn check_non_negative(key: &str, value: f32) -> Result<()> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
-        Err(Error::out_of_range(key, value, "[0, inf)"))
+        Err(Error::out_of_range(key, Human(value), "[0, inf)"))
     }
 }
 

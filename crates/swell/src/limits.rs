@@ -40,6 +40,25 @@ pub const MEMORY_BUDGET_BYTES: u64 = 4 << 30;
 /// 30 fps, which already takes hours to render and gigabytes to store.
 pub const MAX_FRAMES: u32 = 10_000;
 
+/// Largest simulation time, seconds, in either direction: 10⁷ s (116 days). Every model reduces
+/// its phases in f64 (`water/trochoidal_sum.rs`, `fft_ocean/cascade.rs`), where a time of 10⁷ s
+/// still resolves 2 ns, far below a frame; beyond some 10¹⁵ s the phase of a 1 Hz wave would be
+/// noise. Times past this limit are a mistake (a frame number given as seconds), not a wish.
+pub const MAX_TIME_S: f64 = 1.0e7;
+
+/// Checks a simulation time (s) against ±[`MAX_TIME_S`], naming `key` (e.g. `--time`).
+pub fn check_time(key: &str, t: f64) -> crate::Result<()> {
+    if t.is_finite() && t.abs() <= MAX_TIME_S {
+        Ok(())
+    } else {
+        Err(crate::Error::out_of_range(
+            key,
+            crate::error::Human(t),
+            format!("[-{MAX_TIME_S:e}, {MAX_TIME_S:e}] seconds"),
+        ))
+    }
+}
+
 /// Most bytes of scene-file text read: 16 MiB. A hand-written scene is a few kilobytes; the largest
 /// legitimate one (64 waves per list, 16 lights) is under 100 KiB.
 pub const MAX_SCENE_BYTES: u64 = 16 << 20;

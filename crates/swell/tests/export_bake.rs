@@ -430,6 +430,8 @@ fn models_with_foam_get_foam_maps() {
     bake.run(&mut w, &|_| {}).unwrap();
     let names: Vec<&str> = bake.manifest().maps.iter().map(|m| m.name.as_str()).collect();
     assert_eq!(names, ["disp", "normal", "foam"]);
+    let foam = bake.manifest().foam.as_ref().expect("a bake with a foam map says what foam is");
+    assert_eq!((foam.quantity.as_str(), foam.range), ("coverage", [0.0, 1.0]));
     let grid = w.water.as_ref().unwrap().mesh.grid;
     for frame in 1..=2 {
         let t = frame as f64 / 24.0;
@@ -455,6 +457,102 @@ choppiness = 1.5
 size = [48.0, 48.0]
 cells = [48, 48]
 "#;
+
+// ---------------------------------------------------------------- normal spaces
+
+#[test]
+fn tangent_normal_maps_give_back_the_world_normal_on_the_flat_plane() {
+    use swell::export::NormalSpace;
+    let bake_in = |space: NormalSpace| {
+        let dir = tempfile::tempdir().unwrap();
+        let mut s = BakeSettings::new(FrameRange::new("f", 4, 4).unwrap());
+        s.normal_space = space;
+        s.png_bits = Some(16);
+        let m = bake(SEA, dir.path(), s);
+        (dir, m)
+    };
+    let (world_dir, world_m) = bake_in(NormalSpace::World);
+    let (gl_dir, gl_m) = bake_in(NormalSpace::TangentGl);
+    let (dx_dir, dx_m) = bake_in(NormalSpace::TangentDx);
+    let normals = |d: &Path| read_exr_rgb(&d.join("normal_0004.exr"));
+    let (w, h, world_n) = normals(world_dir.path());
+    let (_, _, gl) = normals(gl_dir.path());
+    let (_, _, dx) = normals(dx_dir.path());
+    // The frame of the flat plane: T = +X, N = +Y, B = -Z (OpenGL, green to the image's top) or
+    // +Z (DirectX). T * R + B * G + N * B(lue) is the world normal again, exactly.
+    for v in 0..w * h {
+        let back_gl = Vec3::X * gl[v].x + Vec3::NEG_Z * gl[v].y + Vec3::Y * gl[v].z;
+        let back_dx = Vec3::X * dx[v].x + Vec3::Z * dx[v].y + Vec3::Y * dx[v].z;
+        assert_eq!(back_gl, world_n[v], "pixel {v}");
+        assert_eq!(back_dx, world_n[v], "pixel {v}");
+    }
+    // Independently of the formula: where the displaced surface rises towards the image's top
+    // (from row j + 1 to row j - 1, i.e. towards -Z), the OpenGL green is negative and the
+    // DirectX green positive. The slope is a central difference of the displaced grid, so a
+    // few vertices near crests may disagree; nearly all must agree.
+    let (_, _, disp) = read_exr_rgb(&world_dir.path().join("disp_0004.exr"));
+    let spacing_z = world_m.grid.spacing_m[1];
+    let (mut agree, mut total) = (0, 0);
+    for j in 1..h - 1 {
+        for i in 0..w {
+            // Displaced position of row j + 1 minus that of row j - 1 (along +Z).
+            let e = disp[(j + 1) * w + i] - disp[(j - 1) * w + i] + Vec3::new(0.0, 0.0, 2.0 * spacing_z);
+            let slope_towards_top = -e.y / e.z;
+            if slope_towards_top.abs() > 0.1 {
+                total += 1;
+                let v = j * w + i;
+                let rises = slope_towards_top > 0.0;
+                if (gl[v].y < 0.0) == rises && (dx[v].y > 0.0) == rises {
+                    agree += 1;
+                }
+            }
+        }
+    }
+    assert!(total > 20 && agree as f64 >= 0.95 * total as f64, "{agree} of {total} slopes agree");
+    // Flat water is blue in both tangent spaces; PNGs encode (n + 1) / 2.
+    let png = image::open(gl_dir.path().join("normal_0004.png")).unwrap().into_rgb16();
+    for (px, n) in png.pixels().zip(&gl) {
+        for c in 0..3 {
+            let back = 2.0 * px[c] as f32 / 65535.0 - 1.0;
+            assert!((back - n[c]).abs() <= 1.0 / 65535.0 + 1e-6);
+        }
+        assert!(px[2] > 32768, "tangent-space blue (N = +Y) of a sea is positive");
+    }
+    // Displacement does not depend on the normal space; the manifest says which space it is.
+    assert_eq!(
+        std::fs::read(world_dir.path().join("disp_0004.exr")).unwrap(),
+        std::fs::read(gl_dir.path().join("disp_0004.exr")).unwrap()
+    );
+    assert_eq!(
+        (world_m.normal_space, gl_m.normal_space, dx_m.normal_space),
+        (NormalSpace::World, NormalSpace::TangentGl, NormalSpace::TangentDx)
+    );
+    assert!(gl_m.maps[1].channels.contains("OpenGL") && dx_m.maps[1].channels.contains("DirectX"));
+    let text = std::fs::read_to_string(gl_dir.path().join("bake.json")).unwrap();
+    assert!(text.contains("\"normal_space\": \"tangent-gl\""), "{text}");
+}
+
+#[test]
+fn the_manifest_states_units_axes_and_its_version() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = bake(SEA, dir.path(), BakeSettings::new(FrameRange::new("f", 0, 0).unwrap()));
+    assert_eq!(m.manifest_version, swell::export::BAKE_MANIFEST_VERSION);
+    assert_eq!((m.units.length.as_str(), m.units.time.as_str()), ("metre", "second"));
+    assert!(m.foam.is_none(), "Gerstner has no foam");
+    // The Blender matrix is a +90 degree rotation about X: swell's up (+Y) is Blender's +Z, and
+    // swell's +Z (towards the viewer of the maps' bottom) is Blender's -Y.
+    let mul = |m: [[i8; 3]; 3], v: [i8; 3]| -> [i8; 3] { [0, 1, 2].map(|r| (0..3).map(|c| m[r][c] * v[c]).sum()) };
+    let b = m.axes.to_blender.matrix;
+    assert_eq!(mul(b, [0, 1, 0]), [0, 0, 1]);
+    assert_eq!(mul(b, [0, 0, 1]), [0, -1, 0]);
+    assert_eq!(mul(b, [1, 0, 0]), [1, 0, 0]);
+    let r = glam::Mat3::from_rotation_x(std::f32::consts::FRAC_PI_2);
+    for v in [Vec3::X, Vec3::Y, Vec3::Z, Vec3::new(0.3, -1.2, 2.0)] {
+        let by_matrix = Vec3::from_array([0, 1, 2].map(|k| (0..3).map(|c| f32::from(b[k][c]) * v[c]).sum::<f32>()));
+        assert!((r * v - by_matrix).length() < 1e-6, "{v}");
+    }
+    assert_eq!(m.axes.to_gltf.matrix, [[1, 0, 0], [0, 1, 0], [0, 0, 1]]);
+}
 
 #[test]
 fn tiled_maps_leave_out_the_repeated_last_column_and_row() {

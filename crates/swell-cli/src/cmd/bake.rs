@@ -3,7 +3,9 @@
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use swell::export::{model_loop_period, Bake, BakeSettings, ExrCompression, FrameRange, Shard};
+use swell::export::{
+    model_loop_period, resolve_shard, Bake, BakeSettings, ExrCompression, FrameRange, NormalSpace, Shard,
+};
 use swell::scene::World;
 use swell::Result;
 
@@ -15,7 +17,15 @@ pub fn run(a: BakeArgs) -> Result<()> {
     let mut settings = BakeSettings::new(FrameRange::parse("--frames", &a.frames)?);
     settings.fps = a.fps;
     settings.shard = match &a.shard {
-        Some(s) => Shard::parse("--shard", s)?,
+        Some(s) => {
+            // `auto` reads the batch system's array-job variables; I/N reads nothing.
+            let env = |name: &str| std::env::var_os(name).map(|v| v.to_string_lossy().into_owned());
+            let resolved = resolve_shard("--shard", s, &env)?;
+            if let Some(source) = &resolved.source {
+                eprintln!("--shard {}: {source}", s.trim());
+            }
+            resolved.shard
+        }
         None => Shard::WHOLE,
     };
     settings.resume = a.resume;
@@ -23,11 +33,18 @@ pub fn run(a: BakeArgs) -> Result<()> {
     settings.png_range_m = a.png_range;
     settings.tile = a.tile;
     settings.compression = ExrCompression::parse("--exr-compression", &a.exr_compression)?;
+    settings.normal_space = NormalSpace::parse("--normal-space", &a.normal_space)?;
     settings.validate()?;
     let scene = load_scene(&a.source)?;
+    super::check_steps(
+        &scene,
+        "--frames / --fps (the last frame's time)",
+        f64::from(settings.frames.last) / settings.fps,
+    )?;
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let mut world = World::new(scene)?;
+        super::advance_with_progress(&mut world, f64::from(settings.frames.first) / settings.fps)?;
         settings.loop_period_s = model_loop_period(&world);
         let bake = Bake::prepare(&mut world, &a.out, settings)?;
         let todo = bake.frames_to_bake().len();

@@ -20,18 +20,24 @@ enum Format {
 pub fn run(a: ExportArgs) -> Result<()> {
     let format = resolve_format(&a)?;
     let frames = a.frames.as_deref().map(|s| FrameRange::parse("--frames", s)).transpose()?;
-    if !a.time.is_finite() {
-        return Err(Error::out_of_range("--time", a.time, "finite seconds"));
-    }
-    if frames.is_some() && !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= MAX_FPS) {
+    swell::limits::check_time("--time", a.time)?;
+    if !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= MAX_FPS) {
         return Err(Error::out_of_range("--fps", a.fps, format!("(0, {MAX_FPS}]")));
     }
+    let last_time = frames.map_or(a.time, |r| f64::from(r.last) / a.fps);
+    swell::limits::check_time("--frames / --fps (the last frame's time)", last_time)?;
     super::check_output_dir(&a.out)?;
     let scene = load_scene(&a.source)?;
+    super::check_steps(
+        &scene,
+        if frames.is_some() { "--frames / --fps (the last frame's time)" } else { "--time" },
+        last_time.max(a.time),
+    )?;
     let aspect = scene.render.width as f32 / scene.render.height as f32;
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let mut world = World::new(scene)?;
+        super::advance_with_progress(&mut world, frames.map_or(a.time, |r| f64::from(r.first) / a.fps))?;
         let mut write = |path: &Path, t: f64| -> Result<()> {
             world.update(t)?;
             let meshes = world_meshes(&world);

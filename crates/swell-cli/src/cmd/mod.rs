@@ -10,7 +10,10 @@ mod export;
 mod stats;
 mod view;
 
-use swell::scene::{preset, Scene, MAX_THREADS};
+use indicatif::{ProgressBar, ProgressStyle};
+use swell::error::Human;
+use swell::scene::{preset, Scene, World, MAX_THREADS};
+use swell::water::MAX_STEPS_PER_ADVANCE;
 use swell::{Error, Result};
 
 use crate::args::{Cli, Command, SceneSource};
@@ -72,6 +75,92 @@ fn read_scene(source: &SceneSource) -> Result<Scene> {
     }
 }
 
+/// Steps of a time-stepped model above which reaching a time shows a progress bar and can be
+/// interrupted (about a second of work on the `springs` preset's lattice).
+const PROGRESS_STEPS: f64 = 20_000.0;
+
+/// Refuses, before any work, a time `t` (s) that the scene's time-stepped model (the spring mesh,
+/// which integrates from t = 0) would need more than [`MAX_STEPS_PER_ADVANCE`] steps to reach.
+pub fn check_steps(scene: &Scene, key: &str, t: f64) -> Result<()> {
+    let Some(water) = &scene.water else { return Ok(()) };
+    let Some(steps) = water.model.steps_to(t) else { return Ok(()) };
+    if steps <= MAX_STEPS_PER_ADVANCE as f64 {
+        return Ok(());
+    }
+    let reach = water.model.steps_to(0.0).map_or(0.0, |s| s);
+    let dt = t / (steps - reach).max(1.0);
+    Err(Error::out_of_range(
+        key,
+        Human(t),
+        format!(
+            "the times the spring mesh reaches in at most {} steps from t = 0 (up to about {} s at its \
+             time_step, warm-up included): it would need {} steps",
+            group_digits(MAX_STEPS_PER_ADVANCE as f64),
+            group_digits(((MAX_STEPS_PER_ADVANCE as f64 - reach) * dt).floor()),
+            group_digits(steps)
+        ),
+    ))
+}
+
+/// Moves `world` to time `t` (s); when its time-stepped model has many steps to take, in a
+/// hundred slices with a progress bar and an estimate on stderr, stoppable by SIGINT/SIGTERM
+/// between slices. Slicing does not change the result: the model steps at its fixed time step
+/// whatever the slices.
+pub fn advance_with_progress(world: &mut World, t: f64) -> Result<()> {
+    let steps = |t: f64| world.scene.water.as_ref().and_then(|w| w.model.steps_to(t));
+    let from = if world.time().is_finite() { world.time() } else { 0.0 };
+    let todo = match (steps(t), steps(from)) {
+        (Some(to), Some(done)) if to > done => to - done,
+        (Some(to), Some(_)) => to, // backwards: the model starts again from t = 0
+        _ => 0.0,
+    };
+    if todo < PROGRESS_STEPS {
+        return world.update(t);
+    }
+    let from = if t >= from { from } else { 0.0 };
+    eprintln!(
+        "stepping the spring mesh {} steps to t = {} s (it integrates from t = 0); Ctrl-C stops",
+        group_digits(todo),
+        Human(t)
+    );
+    let bar = ProgressBar::new(100).with_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {percent}%, {elapsed} elapsed, ETA {eta}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message("simulating");
+    let interrupt = crate::interrupt::Interrupt::install()?;
+    let start = std::time::Instant::now();
+    for i in 1..=100 {
+        interrupt.check(format_args!("stopped at {i}% of the steps to t = {} s; nothing was written", Human(t)))?;
+        let ti = if i == 100 { t } else { from + (t - from) * f64::from(i) / 100.0 };
+        world.update(ti)?;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    eprintln!("stepped {} steps in {:.1} s", group_digits(todo), start.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// A whole number with thousands separators (`250,000`); numbers past 10^15 in scientific form.
+pub fn group_digits(x: f64) -> String {
+    if !(x.abs() < 1e15) {
+        return format!("{x:e}");
+    }
+    let digits = format!("{}", x.abs().round() as u64);
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    if x < 0.0 {
+        out.insert(0, '-');
+    }
+    out
+}
+
 /// A rayon pool with `threads` workers (0 = one per core).
 pub fn thread_pool(threads: u32) -> Result<rayon::ThreadPool> {
     if threads > MAX_THREADS {
@@ -93,5 +182,17 @@ fn check_output_dir(out: &std::path::Path) -> Result<()> {
         Ok(())
     } else {
         Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn big_numbers_are_grouped_for_people() {
+        assert_eq!(super::group_digits(250_000.0), "250,000");
+        assert_eq!(super::group_digits(999.0), "999");
+        assert_eq!(super::group_digits(1_000.0), "1,000");
+        assert_eq!(super::group_digits(-1_234_567.0), "-1,234,567");
+        assert_eq!(super::group_digits(2.5e300), "2.5e300");
     }
 }

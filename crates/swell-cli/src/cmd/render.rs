@@ -5,7 +5,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
-use swell::export::{write_gif, write_png};
+use swell::export::{write_gif, write_png, FrameRange, MAX_FPS, MAX_GIF_FPS};
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
 use swell::scene::{Camera, World, MAX_IMAGE_SIDE};
@@ -20,21 +20,36 @@ use swell::limits::MAX_FRAMES;
 
 enum Output {
     Png,
-    Gif { frames: u32 },
+    Gif { frames: FrameRange },
 }
 
 pub fn run(a: RenderArgs) -> Result<()> {
     if a.obj.is_some() {
         return run_mesh(&a);
     }
-    if a.repeat.is_some() {
-        return Err(Error::invalid("--repeat", "times the --obj comparison mode only"));
+    // The comparison mode's own flags act only with --obj: refused, not ignored.
+    for (flag, given) in
+        [("--camera", a.camera.is_some()), ("--light", a.light.is_some()), ("--repeat", a.repeat.is_some())]
+    {
+        if given {
+            return Err(Error::invalid(
+                flag,
+                "belongs to the --obj comparison mode; a scene has its own [camera] and [[light]]",
+            ));
+        }
     }
     let output = resolve_output(&a)?;
-    if !a.time.is_finite() {
-        return Err(Error::out_of_range("--time", a.time, "finite seconds"));
+    let time = a.time.unwrap_or(0.0);
+    swell::limits::check_time("--time", time)?;
+    if let Output::Gif { frames } = &output {
+        swell::limits::check_time("--time + last frame / --fps", time + f64::from(frames.last) / a.fps)?;
     }
     let mut scene = load_scene(&a.source)?;
+    let last_time = match &output {
+        Output::Png => time,
+        Output::Gif { frames } => time + f64::from(frames.last) / a.fps,
+    };
+    super::check_steps(&scene, "--time", time.max(last_time))?;
     if let Some(size) = &a.size {
         let (w, h) = parse_size(size)?;
         scene.render.width = w;
@@ -63,19 +78,19 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let mut renderer = Renderer::new();
     pool.install(|| match output {
         Output::Png => {
-            world.update(a.time)?;
+            super::advance_with_progress(&mut world, time)?;
             let mut rgba = Vec::new();
             renderer.render(&world).encode_rgba8(exposure, gamma, &mut rgba);
             write_png(&a.out, width, height, &rgba)
         }
         Output::Gif { frames } => {
-            let bar = ProgressBar::new(frames as u64).with_style(
+            let bar = ProgressBar::new(u64::from(frames.len())).with_style(
                 ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} frames, {elapsed} elapsed, ETA {eta}")
                     .expect("valid template")
                     .progress_chars("=> "),
             );
             bar.set_message(format!("rendering {}", a.out.display()));
-            let delay_cs = (100.0 / a.fps).round().clamp(1.0, 65535.0) as u16;
+            super::advance_with_progress(&mut world, time + f64::from(frames.first) / a.fps)?;
             // issue 10: SIGINT/SIGTERM abandon the animation between frames; the GIF is written
             // atomically, so nothing is left under its name.
             let interrupt = crate::interrupt::Interrupt::install()?;
@@ -83,11 +98,11 @@ pub fn run(a: RenderArgs) -> Result<()> {
                 &a.out,
                 width as u16,
                 height as u16,
-                frames as usize,
-                delay_cs,
+                frames.len() as usize,
+                a.fps,
                 |k, rgba| {
                     interrupt.check(format_args!("{} not written", a.out.display()))?;
-                    world.update(a.time + k as f64 / a.fps)?;
+                    world.update(time + f64::from(frames.first + k as u32) / a.fps)?;
                     renderer.render(&world).encode_rgba8(exposure, gamma, rgba);
                     Ok(())
                 },
@@ -104,22 +119,37 @@ pub fn run(a: RenderArgs) -> Result<()> {
 /// Decides PNG or GIF from the extension and checks everything about the output before any work.
 fn resolve_output(a: &RenderArgs) -> Result<Output> {
     let ext = a.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let output = match (ext.as_deref(), a.frames) {
+    let frames = a.frames.as_deref().map(|f| FrameRange::parse("--frames", f)).transpose()?;
+    if !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= MAX_FPS) {
+        return Err(Error::out_of_range("--fps", a.fps, format!("(0, {MAX_FPS}]")));
+    }
+    let output = match (ext.as_deref(), frames) {
         (Some("png"), None) => Output::Png,
         (Some("png"), Some(_)) => {
             return Err(Error::invalid("--out", "--frames writes an animation: give a .gif output"))
         }
-        (Some("gif"), Some(n)) => {
-            if !(1..=MAX_FRAMES).contains(&n) {
-                return Err(Error::out_of_range("--frames", n, format!("[1, {MAX_FRAMES}]")));
+        (Some("gif"), Some(frames)) => {
+            if frames.len() > MAX_FRAMES {
+                return Err(Error::out_of_range(
+                    "--frames",
+                    format!("{} frames", frames.len()),
+                    format!("[1, {MAX_FRAMES}] frames"),
+                ));
             }
-            if !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= 100.0) {
-                return Err(Error::out_of_range("--fps", a.fps, "(0, 100]"));
+            if a.fps > MAX_GIF_FPS {
+                return Err(Error::out_of_range(
+                    "--fps",
+                    a.fps,
+                    format!(
+                        "(0, {MAX_GIF_FPS}] for a GIF: its delays are whole hundredths of a second and players \
+                         slow down delays under 2/100 s (export or bake frames for higher rates)"
+                    ),
+                ));
             }
-            Output::Gif { frames: n }
+            Output::Gif { frames }
         }
         (Some("gif"), None) => {
-            return Err(Error::invalid("--frames", "a .gif output needs --frames N (the number of frames)"))
+            return Err(Error::invalid("--frames", "a .gif output needs --frames N (frames 0 to N-1) or A..B"))
         }
         _ => {
             return Err(Error::invalid(
@@ -151,17 +181,19 @@ fn run_mesh(a: &RenderArgs) -> Result<()> {
     let obj = a.obj.as_deref().expect("checked by the caller");
     let camera_path =
         a.camera.as_deref().ok_or_else(|| Error::invalid("--camera", "--obj needs --camera CAMERA.json"))?;
-    for (flag, given) in [
-        ("--preset", a.source.preset.is_some()),
-        ("--scene", a.source.scene.is_some()),
-        ("--frames", a.frames.is_some()),
-        ("--size", a.size.is_some()),
-        ("--wireframe", a.wireframe),
-        ("--normals", a.normals),
-        ("--supersample", a.supersample.is_some()),
+    let scene_only = "does not apply to the --obj comparison mode";
+    for (flag, given, why) in [
+        ("--preset", a.source.preset.is_some(), scene_only),
+        ("--scene", a.source.scene.is_some(), scene_only),
+        ("--frames", a.frames.is_some(), "does not apply to --obj: a mesh file is one still frame"),
+        ("--time", a.time.is_some(), "does not apply to --obj: a mesh file does not move"),
+        ("--size", a.size.is_some(), "does not apply to --obj: the camera file's width and height set the image size"),
+        ("--wireframe", a.wireframe, scene_only),
+        ("--normals", a.normals, scene_only),
+        ("--supersample", a.supersample.is_some(), scene_only),
     ] {
         if given {
-            return Err(Error::invalid(flag, "does not apply to the --obj comparison mode"));
+            return Err(Error::invalid(flag, why));
         }
     }
     match a.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {

@@ -1,15 +1,13 @@
 //! `swell stats`: the sea state a spectral scene realises, as JSON ([`swell::scene::sea_stats`]).
 
 use swell::scene::sea_stats;
-use swell::{Error, Result};
+use swell::Result;
 
 use super::load_scene;
 use crate::args::StatsArgs;
 
 pub fn run(a: StatsArgs) -> Result<()> {
-    if !a.time.is_finite() {
-        return Err(Error::out_of_range("--time", a.time, "finite seconds"));
-    }
+    swell::limits::check_time("--time", a.time)?;
     let scene = load_scene(&a.source)?;
     let stats = sea_stats(&scene, a.time)?;
     println!("{}", serde_json::to_string_pretty(&stats).expect("plain JSON values"));

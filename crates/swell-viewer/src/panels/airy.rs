@@ -15,6 +15,7 @@ pub type AiryForm = WaveListForm<AiryWave>;
 
 impl ListedWave for AiryWave {
     const HEADERS: &'static [&'static str] = &["A m", "L m", "dir x", "dir z", "phase rad"];
+    const KEYS: &'static [&'static str] = &["amplitude", "wavelength", "direction", "phase"];
     const MAX: usize = MAX_AIRY_WAVES;
     const ID: &'static str = "airy";
     fn cells(&mut self, ui: &mut Ui) -> bool {

@@ -4,7 +4,7 @@
 use eframe::egui::Ui;
 use swell::scene::Camera;
 
-use super::fields;
+use super::{fields, keys};
 
 /// What the camera panel asks of the viewer beyond editing the draft.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -24,6 +24,7 @@ pub fn show(ui: &mut Ui, camera: &mut Camera) -> (bool, CameraRequest) {
         changed |= fields::number(ui, "near", &mut camera.near, 0.01, " m");
         changed |= fields::number(ui, "far", &mut camera.far, 1.0, " m");
     });
+    keys::edits("camera", &["eye", "target", "up", "fov_y_deg", "near", "far"]);
     let reset = ui.button("Reset camera (r)").clicked();
     ui.small("Left drag orbits, right drag or wheel zooms, middle drag pans.");
     (changed, CameraRequest { reset })

@@ -4,7 +4,7 @@
 use eframe::egui::Ui;
 use swell::spectrum::Dispersion;
 
-use super::fields;
+use super::{fields, keys};
 
 /// Depth (m) offered when switching from deep water to a relation that needs one.
 pub const DEFAULT_DEPTH_M: f32 = 10.0;
@@ -45,8 +45,10 @@ pub fn show(ui: &mut Ui, d: &mut Dispersion) -> bool {
         *d = switch_dispersion(*d, name);
         changed = true;
     }
+    keys::edits("water.dispersion", &["type"]);
     if let Dispersion::FiniteDepth { depth } | Dispersion::Capillary { depth } = d {
         changed |= fields::number(ui, "water depth D", depth, 0.1, " m");
+        keys::edits("water.dispersion", &["depth"]);
     }
     changed
 }

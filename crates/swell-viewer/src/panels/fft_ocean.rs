@@ -7,9 +7,9 @@
 
 use eframe::egui::Ui;
 use swell::spectrum::Spreading;
-use swell::water::{FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE};
+use swell::water::{BlenderOcean, FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE};
 
-use super::fields;
+use super::{fields, keys, table_fields};
 
 /// The spectra offered, in menu order, with their scene-file names.
 pub const SPECTRA: &[(SpectrumKind, &str)] = &[
@@ -55,12 +55,35 @@ pub fn show(ui: &mut Ui, p: &mut FftOceanParams) -> bool {
         changed |= fields::choice(ui, "grid", &mut p.grid, &options);
         changed |= fields::number(ui, "patch size", &mut p.patch_size, 1.0, " m");
         changed |= fields::count(ui, "cascades", &mut p.cascades, 0.05);
+        changed |= fields::flag(ui, "tile cascades (bakes tile)", &mut p.tile_cascades);
         changed |= fields::count(ui, "seed", &mut p.seed, 1.0);
         changed |= fields::optional_number(ui, "loop period", &mut p.loop_period, DEFAULT_LOOP_PERIOD_S, 0.5, " s");
         changed |= fields::flag(ui, "foam", &mut p.foam);
+        keys::edits(
+            "water",
+            &[
+                "spectrum",
+                "wind_speed",
+                "wind_direction_deg",
+                "fetch_km",
+                "depth",
+                "gamma",
+                "small_wave_cutoff",
+                "choppiness",
+                "spreading",
+                "grid",
+                "patch_size",
+                "cascades",
+                "tile_cascades",
+                "seed",
+                "loop_period",
+                "foam",
+            ],
+        );
         if p.foam {
             changed |= fields::number(ui, "foam threshold (Jacobian)", &mut p.foam_threshold, 0.005, "");
             changed |= fields::number(ui, "foam fade", &mut p.foam_fade_s, 0.05, " s");
+            keys::edits("water", &["foam_threshold", "foam_fade_s"]);
         }
         let mut has_swell = p.swell.is_some();
         if fields::flag(ui, "swell", &mut has_swell) {
@@ -72,9 +95,54 @@ pub fn show(ui: &mut Ui, p: &mut FftOceanParams) -> bool {
             changed |= fields::number(ui, "  swell period", &mut s.period, 0.05, " s");
             changed |= fields::number(ui, "  swell direction", &mut s.direction_deg, 0.5, " deg");
             changed |= fields::number(ui, "  swell spread s", &mut s.spread, 0.5, "");
+            keys::edits("water.swell", &["height", "period", "direction_deg", "spread"]);
+        }
+        let mut has_blender = p.blender.is_some();
+        if fields::flag(ui, "Blender's Ocean keys", &mut has_blender) {
+            set_blender(p, has_blender);
+            changed = true;
         }
     });
+    if let Some(b) = &mut p.blender {
+        ui.label("[water.blender]: Blender's names and meaning; they replace the sea keys above");
+        let mut table = toml::Table::try_from(&*b).unwrap_or_default();
+        let names: Vec<&str> = table.keys().map(String::as_str).collect();
+        keys::edits("water.blender", &names);
+        if table_fields::show(ui, "fft-blender", &mut table) {
+            // Read back by the scene file's own parser; a key of the wrong type stays unchanged.
+            if let Ok(edited) = toml::Value::Table(table).try_into::<BlenderOcean>() {
+                *b = edited;
+                changed = true;
+            }
+        }
+    }
     changed
+}
+
+/// Switches `[water.blender]` on (Blender's defaults, with the sea keys it replaces put back to
+/// their defaults, as a scene file must leave them) or off.
+pub fn set_blender(p: &mut FftOceanParams, on: bool) {
+    if !on {
+        p.blender = None;
+        return;
+    }
+    let d = FftOceanParams::default();
+    *p = FftOceanParams {
+        grid: d.grid,
+        patch_size: d.patch_size,
+        spectrum: d.spectrum,
+        wind_speed: d.wind_speed,
+        wind_direction_deg: d.wind_direction_deg,
+        fetch_km: d.fetch_km,
+        depth: d.depth,
+        choppiness: d.choppiness,
+        spreading: d.spreading,
+        gamma: d.gamma,
+        small_wave_cutoff: d.small_wave_cutoff,
+        seed: d.seed,
+        blender: Some(BlenderOcean::default()),
+        ..p.clone()
+    };
 }
 
 #[cfg(test)]

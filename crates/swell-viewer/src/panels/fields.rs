@@ -79,6 +79,67 @@ pub fn color(ui: &mut Ui, label: &str, c: &mut Vec3) -> bool {
     changed
 }
 
+/// A labelled triple of numbers per linear RGB channel that is not a colour (an absorption
+/// coefficient, 1/m), with a unit suffix; no colour picker.
+pub fn rgb_numbers(ui: &mut Ui, label: &str, v: &mut Vec3, speed: f64, suffix: &str) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let mut changed = false;
+            for (c, name) in [(&mut v.x, "r "), (&mut v.y, "g "), (&mut v.z, "b ")] {
+                changed |= ui.add(DragValue::new(c).speed(speed).prefix(name).suffix(suffix).max_decimals(4)).changed();
+            }
+            changed
+        })
+        .inner;
+    ui.end_row();
+    changed
+}
+
+/// A labelled optional 3-vector: a check box (`None` when off) and, when on, its components.
+/// Turning it on starts from `default`.
+pub fn optional_vec3(ui: &mut Ui, label: &str, value: &mut Option<Vec3>, default: Vec3, speed: f64) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let mut on = value.is_some();
+            let mut changed = false;
+            if ui.checkbox(&mut on, "").changed() {
+                *value = on.then_some(default);
+                changed = true;
+            }
+            if let Some(v) = value {
+                changed |= vec3_inline(ui, v, speed);
+            }
+            changed
+        })
+        .inner;
+    ui.end_row();
+    changed
+}
+
+/// A labelled optional text (a file name): a check box (`None` when off) and, when on, a text
+/// field. Turning it on starts from `default`.
+pub fn optional_text(ui: &mut Ui, label: &str, value: &mut Option<String>, default: &str) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let mut on = value.is_some();
+            let mut changed = false;
+            if ui.checkbox(&mut on, "").changed() {
+                *value = on.then(|| default.to_owned());
+                changed = true;
+            }
+            if let Some(text) = value {
+                changed |= ui.add(egui::TextEdit::singleline(text).desired_width(180.0)).changed();
+            }
+            changed
+        })
+        .inner;
+    ui.end_row();
+    changed
+}
+
 /// A two-column grid for `label | editor` rows, with a unique id.
 pub fn grid(id: &str) -> egui::Grid {
     egui::Grid::new(id).num_columns(2).spacing([8.0, 4.0])

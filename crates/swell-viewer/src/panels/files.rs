@@ -20,6 +20,8 @@ pub enum FileRequest {
     SaveWindow(PathBuf),
     /// Write the terrain's height field as a 16-bit grey PNG with its sidecar.
     SaveHeightmap(PathBuf),
+    /// Read a heightmap PNG (and its sidecar) and make it the terrain, if it reads.
+    LoadHeightmap(PathBuf),
 }
 
 /// The outcome of the last file operation, as shown under the buttons.

@@ -5,7 +5,7 @@ use eframe::egui::Ui;
 use glam::Vec3;
 use swell::scene::{Light, MAX_LIGHTS};
 
-use super::fields;
+use super::{fields, keys};
 
 /// A new directional light: the sun from behind the default camera's left shoulder.
 pub const NEW_DIRECTIONAL: Light =
@@ -55,6 +55,9 @@ pub fn show(ui: &mut Ui, lights: &mut Vec<Light>) -> bool {
                 changed |= fields::color(ui, "colour", color);
                 changed |= fields::number(ui, "intensity", intensity, 0.01, "");
             });
+            // The kind buttons edit `type`; the vector is the direction or the position.
+            let vector = if matches!(light, Light::Directional { .. }) { "direction" } else { "position" };
+            keys::edits("light[]", &["type", vector, "color", "intensity"]);
         });
     }
     if let Some(i) = delete {

@@ -24,6 +24,7 @@ pub mod fft_ocean;
 pub mod fields;
 pub mod files;
 pub mod gerstner;
+pub mod keys;
 pub mod lights;
 pub mod noise;
 pub mod radial;
@@ -124,7 +125,8 @@ pub fn show_all(
 }
 
 fn section(ui: &mut Ui, title: &str, open: bool, body: impl FnOnce(&mut Ui)) {
-    CollapsingHeader::new(title).default_open(open).show(ui, body);
+    // While the key test records what the panel edits, every section is drawn.
+    CollapsingHeader::new(title).default_open(open || keys::is_recording()).show(ui, body);
 }
 
 /// Runs [`show_all`] for one frame of a window-less egui context (no input), for tests.
@@ -203,6 +205,224 @@ mod tests {
             assert_eq!(clock, Clock::default());
             // And what the panel shows saves to the same file.
             assert_eq!(Scene::from_toml(&draft.to_toml(), "t").unwrap(), scene);
+        }
+    }
+
+    /// Scene-file keys with no widget on purpose, and why.
+    const NOT_EDITED: &[(&str, &str)] = &[("version", "the file format's version: always 1, not a parameter")];
+
+    /// The water of the `sea` preset switched to `model`, with the keys a default leaves out
+    /// (optional keys, wave lists, a dispersion with a depth) set from `extra`, a `[water]` TOML
+    /// fragment.
+    fn water_with(model: &str, extra: &str) -> swell::scene::WaterSpec {
+        let sea = preset("sea").unwrap().water.unwrap();
+        let mut t = water::switch_model(Some(&sea), model).unwrap().to_table();
+        t.extend(toml::from_str::<toml::Table>(extra).unwrap());
+        swell::scene::WaterSpec::from_table(t, "test").unwrap()
+    }
+
+    /// One scene per water model (two for the FFT ocean: swell's keys and Blender's) in which every
+    /// key of the scene format is set: both kinds of light, the sun's own direction, a power-law
+    /// gamma, a flat bottom and a texture, a terrain with size and extent, the models' optional keys.
+    fn scenes_with_every_key() -> Vec<(String, Scene)> {
+        let mut base = preset("sea").unwrap();
+        base.lights = vec![lights::NEW_DIRECTIONAL, lights::NEW_POINT];
+        base.sky.sun_direction = Some(sky::DEFAULT_SUN_DIRECTION);
+        base.render.gamma = Some(render::DEFAULT_POWER_GAMMA);
+        let mut t = terrain::switch_generator(None, Some("hills")).unwrap().unwrap();
+        t.size = Some(65);
+        t.extent = Some(swell::scene::DEFAULT_TERRAIN_EXTENT);
+        base.terrain = Some(t);
+        let depth = "dispersion = { type = 'finite-depth', depth = 12.0 }\n";
+        let listed = "waves = [{ amplitude = 0.2, wavelength = 20.0, direction = [1.0, 0.0], phase = 0.5 }]\n";
+        let models: Vec<(&str, String)> = vec![
+            ("gerstner", String::new()),
+            ("sines", String::new()),
+            ("tessendorf", format!("{depth}loop_period = 30.0\n{listed}")),
+            ("wave-set", depth.into()),
+            ("airy", format!("{depth}{listed}")),
+            (
+                "steep-sines",
+                "waves = [{ amplitude = 0.2, frequency = 0.3, velocity = 2.0, direction = [1.0, 0.0], exponent = 2.0 }]\n"
+                    .into(),
+            ),
+            ("radial", String::new()),
+            ("noise", String::new()),
+            ("springs", "drops = { interval = 4.0, radius = 1.0, depth = 0.8, seed = 3 }\n".into()),
+            ("river", String::new()),
+            (
+                "fft",
+                "depth = 20.0\nloop_period = 60.0\nswell = { height = 1.0, period = 12.0, direction_deg = 30.0, spread = 8.0 }\n"
+                    .into(),
+            ),
+        ];
+        assert_eq!(models.len(), swell::scene::WATER_MODELS.len(), "a model without a scene here");
+        let mut scenes: Vec<(String, Scene)> = models
+            .into_iter()
+            .map(|(m, extra)| {
+                let mut s = base.clone();
+                let mut w = water_with(m, &extra);
+                w.material.bottom_depth = Some(water::DEFAULT_BOTTOM_DEPTH_M);
+                w.material.texture = Some("procedural".into());
+                // Left out of the file at their identity values.
+                w.surface.yaw_deg = 15.0;
+                w.surface.uniform_scale = 1.5;
+                s.water = Some(w);
+                (m.to_string(), s)
+            })
+            .collect();
+        let mut blender = base.clone();
+        blender.water = preset("ocean-blender").unwrap().water;
+        blender.water.as_mut().unwrap().surface.yaw_deg = 15.0;
+        scenes.push(("fft with [water.blender]".into(), blender));
+        scenes
+    }
+
+    /// The panel has a widget for every key of the scene format, for every water model, and
+    /// declares no key the format does not have. A key without a widget fails here by name.
+    #[test]
+    fn the_panel_edits_every_key_of_the_scene_format() {
+        let scenes = scenes_with_every_key();
+        let mut all_keys = std::collections::BTreeSet::new();
+        for (label, scene) in &scenes {
+            let table: toml::Table = toml::from_str(&scene.to_toml()).unwrap();
+            let mut format_keys = keys::key_paths(&table);
+            for (k, _why) in NOT_EDITED {
+                format_keys.remove(*k);
+            }
+            let mut draft = scene.clone();
+            let (_, declared) = keys::recording(|| {
+                show_headless(&mut draft, &mut PanelState::default(), &mut Clock::default());
+            });
+            assert_eq!(&draft, scene, "{label}: showing changed the scene");
+            let missing: Vec<_> = format_keys.difference(&declared).collect();
+            assert!(missing.is_empty(), "{label}: no panel widget edits {missing:?}");
+            all_keys.extend(format_keys);
+            all_keys.extend(declared);
+        }
+        // And no declaration names a key that none of the scenes has (a typo, a renamed key).
+        let mut format_keys = std::collections::BTreeSet::new();
+        for (_, scene) in &scenes {
+            format_keys.extend(keys::key_paths(&toml::from_str(&scene.to_toml()).unwrap()));
+        }
+        let unknown: Vec<_> = all_keys.difference(&format_keys).collect();
+        assert!(unknown.is_empty(), "the panel declares keys the scene format does not have: {unknown:?}");
+    }
+
+    /// Numeric keys whose widget is a menu rather than a number (arrow keys do not step it).
+    const MENU_NUMBERS: &[(&str, &str)] = &[("water.grid", "a menu of the powers of two the FFT takes")];
+
+    /// Every leaf of a saved scene, with array-of-tables indices, and its value as text.
+    fn leaf_values(scene: &Scene) -> std::collections::BTreeMap<String, String> {
+        fn walk(prefix: &str, t: &toml::Table, out: &mut std::collections::BTreeMap<String, String>) {
+            for (k, v) in t {
+                let path = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+                match v {
+                    toml::Value::Table(t) => walk(&path, t, out),
+                    toml::Value::Array(items) if items.iter().all(toml::Value::is_table) && !items.is_empty() => {
+                        for (i, item) in items.iter().enumerate() {
+                            walk(&format!("{path}[{i}]"), item.as_table().expect("checked"), out);
+                        }
+                    }
+                    v => {
+                        out.insert(path, v.to_string());
+                    }
+                }
+            }
+        }
+        let mut out = std::collections::BTreeMap::new();
+        walk("", &toml::from_str(&scene.to_toml()).unwrap(), &mut out);
+        out
+    }
+
+    /// `light[1].color` -> `light[].color`, the form panels declare.
+    fn without_indices(path: &str) -> String {
+        let mut out = String::new();
+        let mut in_index = false;
+        for c in path.chars() {
+            match c {
+                '[' => in_index = true,
+                ']' => in_index = false,
+                _ if in_index => continue,
+                _ => {}
+            }
+            out.push(c);
+        }
+        out
+    }
+
+    /// Drives the panel with the keyboard, as a user can: Tab to each widget in turn and hold the
+    /// up arrow (which steps a focused number by its drag speed per press). Returns the key paths of the
+    /// scene that changed on the way.
+    fn keys_the_keyboard_changes(scene: &Scene) -> std::collections::BTreeSet<String> {
+        use eframe::egui;
+        let ctx = egui::Context::default();
+        let mut draft = scene.clone();
+        let mut state = PanelState::default();
+        let mut clock = Clock::default();
+        let press = |key| egui::Event::Key {
+            key,
+            physical_key: None,
+            pressed: true,
+            repeat: false,
+            modifiers: egui::Modifiers::NONE,
+        };
+        let mut frame = |events: Vec<egui::Event>, draft: &mut Scene| {
+            let input = egui::RawInput { events, ..Default::default() };
+            let _ = ctx.run(input, |ctx| {
+                egui::CentralPanel::default().show(ctx, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| show_all(ui, draft, &mut state, &mut clock, None));
+                });
+            });
+        };
+        let mut changed = std::collections::BTreeSet::new();
+        // Sections open (as while recording), so every widget can take the focus.
+        keys::recording(|| {
+            frame(vec![], &mut draft);
+            frame(vec![], &mut draft);
+            let mut visited = std::collections::HashSet::new();
+            for _ in 0..5000 {
+                let before = leaf_values(&draft);
+                frame(vec![press(egui::Key::Tab)], &mut draft);
+                let Some(id) = ctx.memory(|m| m.focused()) else { break };
+                if !visited.insert(id) {
+                    break; // around once
+                }
+                // Twenty presses (a held key): whole numbers with a drag speed below 1 (threads,
+                // seeds) step by speed x presses.
+                frame(vec![press(egui::Key::ArrowUp); 20], &mut draft);
+                // The arrow may also move the focus upwards: put it back where Tab left it.
+                ctx.memory_mut(|m| m.request_focus(id));
+                frame(vec![], &mut draft);
+                let after = leaf_values(&draft);
+                for (k, v) in &after {
+                    if before.get(k) != Some(v) {
+                        changed.insert(without_indices(k));
+                    }
+                }
+            }
+        });
+        changed
+    }
+
+    /// The declarations are honest for numbers: Tab to each widget and hold the up arrow, and
+    /// every numeric key of the scene format changes in the draft scene (a declared key no widget
+    /// really edits fails here by name). Switches, menus and texts are declared only.
+    #[test]
+    fn the_keyboard_reaches_every_numeric_key_through_the_panel() {
+        for (label, scene) in scenes_with_every_key() {
+            let table: toml::Table = toml::from_str(&scene.to_toml()).unwrap();
+            let values = leaf_values(&scene);
+            let numeric: std::collections::BTreeSet<String> = values
+                .iter()
+                .filter(|(_, v)| v.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '['))
+                .map(|(k, _)| without_indices(k))
+                .filter(|k| !NOT_EDITED.iter().chain(MENU_NUMBERS).any(|(x, _)| x == k))
+                .collect();
+            assert!(keys::key_paths(&table).is_superset(&numeric));
+            let changed = keys_the_keyboard_changes(&scene);
+            let unreached: Vec<_> = numeric.difference(&changed).collect();
+            assert!(unreached.is_empty(), "{label}: no widget the keyboard reaches changes {unreached:?}");
         }
     }
 

@@ -4,7 +4,7 @@
 use eframe::egui::Ui;
 use swell::water::{NoiseParams, MAX_NOISE_OCTAVES};
 
-use super::fields;
+use super::{fields, keys};
 
 /// Shows every key; returns whether `p` changed.
 pub fn show(ui: &mut Ui, p: &mut NoiseParams) -> bool {
@@ -19,6 +19,10 @@ pub fn show(ui: &mut Ui, p: &mut NoiseParams) -> bool {
         changed |= fields::vec2_xz(ui, "drift (m/s)", &mut p.drift, 0.05);
         changed |= fields::number(ui, "evolution >= 0", &mut p.evolution, 0.01, " cells/s");
         changed |= fields::seed(ui, "seed", &mut p.seed);
+        keys::edits(
+            "water",
+            &["amplitude", "scale", "octaves", "persistence", "lacunarity", "drift", "evolution", "seed"],
+        );
     });
     changed
 }

@@ -4,7 +4,7 @@
 use eframe::egui::Ui;
 use swell::water::RadialWaveParams;
 
-use super::fields;
+use super::{fields, keys};
 
 /// Shows every key; returns whether `p` changed.
 pub fn show(ui: &mut Ui, p: &mut RadialWaveParams) -> bool {
@@ -15,6 +15,7 @@ pub fn show(ui: &mut Ui, p: &mut RadialWaveParams) -> bool {
         changed |= fields::number(ui, "amplitude a >= 0", &mut p.amplitude, 0.001, " m");
         changed |= fields::number(ui, "wavenumber k > 0", &mut p.wavenumber, 0.1, " rad/m");
         changed |= fields::number(ui, "angular frequency w >= 0", &mut p.angular_frequency, 0.05, " rad/s");
+        keys::edits("water", &["wave_center", "amplitude", "wavenumber", "angular_frequency"]);
     });
     changed
 }

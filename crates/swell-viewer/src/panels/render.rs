@@ -1,10 +1,10 @@
-//! The render panel: exposure, display gamma, ambient light, worker threads, the overlays and the
-//! image size `swell render` uses for this scene.
+//! The render panel: exposure, display gamma, ambient light, worker threads, supersampling, the
+//! overlays and the image size `swell render` uses for this scene.
 
 use eframe::egui::{DragValue, Ui};
 use swell::scene::RenderSettings;
 
-use super::fields;
+use super::{fields, keys};
 
 /// The display gamma offered when switching from the sRGB curve to a power law.
 pub const DEFAULT_POWER_GAMMA: f32 = 2.2;
@@ -31,6 +31,7 @@ pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
         ui.end_row();
         changed |= fields::color(ui, "ambient", &mut render.ambient);
         changed |= fields::count(ui, "threads (0 = all cores)", &mut render.threads, 0.05);
+        changed |= fields::count(ui, "supersample (N x N per pixel)", &mut render.supersample, 0.05);
         ui.label("saved image size");
         ui.horizontal(|ui| {
             changed |= ui.add(DragValue::new(&mut render.width).speed(4.0).suffix(" px")).changed();
@@ -45,6 +46,10 @@ pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
         });
         ui.end_row();
     });
+    keys::edits(
+        "render",
+        &["exposure", "gamma", "ambient", "threads", "supersample", "width", "height", "wireframe", "normals"],
+    );
     ui.small("The view renders at the window's size; the saved size is what `swell render` uses.");
     changed
 }

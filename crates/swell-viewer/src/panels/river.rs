@@ -6,7 +6,7 @@
 use eframe::egui::Ui;
 use swell::water::RiverParams;
 
-use super::fields;
+use super::{fields, keys};
 
 /// Shows every key; returns whether `p` changed.
 pub fn show(ui: &mut Ui, p: &mut RiverParams) -> bool {
@@ -25,6 +25,23 @@ pub fn show(ui: &mut Ui, p: &mut RiverParams) -> bool {
         changed |= fields::number(ui, "texture repeat length > 0", &mut p.texture_length, 0.05, " m");
         changed |= fields::number(ui, "ripple amplitude >= 0", &mut p.ripple_amplitude, 0.005, " m");
         changed |= fields::number(ui, "ripple wavelength > 0", &mut p.ripple_wavelength, 0.01, " m");
+        keys::edits(
+            "water",
+            &[
+                "flow_speed",
+                "left_offset",
+                "left_amplitude",
+                "right_offset",
+                "right_amplitude",
+                "right_phase",
+                "bank_rate",
+                "bank_phase",
+                "bank_wavenumber",
+                "texture_length",
+                "ripple_amplitude",
+                "ripple_wavelength",
+            ],
+        );
     });
     changed
 }

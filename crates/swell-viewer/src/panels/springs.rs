@@ -10,7 +10,7 @@ use swell::error::{check_non_negative, check_positive};
 use swell::water::{DropSchedule, Edges, SpringMeshParams};
 use swell::Result;
 
-use super::fields;
+use super::{fields, keys};
 
 /// What a click on the water drops, remembered between frames (not part of the scene).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,6 +61,7 @@ pub fn show(ui: &mut Ui, p: &mut SpringMeshParams, click: &mut ClickDrop) -> boo
         changed |= fields::number(ui, "spring constant c", &mut p.stiffness, 0.01, " N/m");
         changed |= fields::number(ui, "damping gamma", &mut p.damping, 0.001, " kg/s");
         changed |= fields::number(ui, "time step dt", &mut p.time_step, 0.001, " s");
+        keys::edits("water", &["mass", "stiffness", "damping", "time_step"]);
     });
     let (text, ok) = stability(p);
     if ok {
@@ -81,6 +82,7 @@ pub fn show(ui: &mut Ui, p: &mut SpringMeshParams, click: &mut ClickDrop) -> boo
         changed |= fields::choice(ui, "edges", &mut p.edges, &[(Edges::Fixed, "fixed"), (Edges::Free, "free")]);
         changed |= fields::flag(ui, "vertical only", &mut p.vertical_only);
         changed |= fields::number(ui, "warm-up", &mut p.warm_up, 0.5, " s");
+        keys::edits("water", &["lattice", "spacing", "rest_length_ratio", "edges", "vertical_only", "warm_up"]);
         let mut has_drops = p.drops.is_some();
         if fields::flag(ui, "scheduled drops", &mut has_drops) {
             p.drops = has_drops.then_some(DropSchedule { interval: 4.0, radius: 1.0, depth: 0.8, seed: 1 });
@@ -93,6 +95,7 @@ pub fn show(ui: &mut Ui, p: &mut SpringMeshParams, click: &mut ClickDrop) -> boo
             ui.label("  seed");
             changed |= ui.add(egui::DragValue::new(&mut d.seed)).changed();
             ui.end_row();
+            keys::edits("water.drops", &["interval", "radius", "depth", "seed"]);
         }
     });
     ui.separator();

@@ -20,6 +20,7 @@ pub const GENERATED_EXPONENT: f32 = 2.0;
 
 impl ListedWave for SteepSineWave {
     const HEADERS: &'static [&'static str] = &["A m", "freq rad/m", "v m/s", "dir x", "dir z", "k"];
+    const KEYS: &'static [&'static str] = &["amplitude", "frequency", "velocity", "direction", "exponent"];
     const MAX: usize = MAX_STEEP_SINE_WAVES;
     const ID: &'static str = "steep-sines";
     fn cells(&mut self, ui: &mut Ui) -> bool {

@@ -11,11 +11,11 @@ use std::path::PathBuf;
 use eframe::egui::{self, TextEdit, Ui};
 use swell::math::Transform;
 use swell::scene::{HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, TERRAIN_GENERATORS};
-use swell::shading::TerrainMaterial;
+use swell::shading::{TerrainMaterial, TerrainShading};
 use swell::{Error, Result};
 
-use super::files::FileRequest;
-use super::{fields, table_fields};
+use super::files::{FileMessage, FileRequest};
+use super::{fields, keys as key_paths, table_fields};
 
 /// Paper 000's move step, metres per press.
 pub const PAPER_MOVE_STEP_M: f32 = 5.0;
@@ -37,6 +37,8 @@ pub struct TerrainForm {
     pub heightmap_path: String,
     /// Why the last generator switch or parameter edit was refused.
     pub message: Option<String>,
+    /// The outcome of the last heightmap load or save (path and size, or the error).
+    pub file_message: Option<FileMessage>,
 }
 
 impl Default for TerrainForm {
@@ -47,9 +49,17 @@ impl Default for TerrainForm {
             scale_step: SCALE_STEP,
             heightmap_path: "terrain.png".into(),
             message: None,
+            file_message: None,
         }
     }
 }
+
+/// The terrain shadings the panel offers, with their scene-file names.
+pub const TERRAIN_SHADINGS: &[(TerrainShading, &str)] =
+    &[(TerrainShading::Flat, "flat"), (TerrainShading::Gouraud, "gouraud")];
+
+/// The generator "Back to a generator" switches a loaded heightmap to (the paper 001 classic).
+pub const DEFAULT_GENERATOR: &str = "diamond-square";
 
 /// The `terrain.generator` name of a generator.
 pub fn generator_name(g: &TerrainGenerator) -> String {
@@ -132,6 +142,32 @@ pub fn use_heightmap(spec: Option<&TerrainSpec>, path: PathBuf) -> TerrainSpec {
     }
 }
 
+/// Whether the generator has a seed, so that "Regenerate (new seed)" means something.
+pub fn has_seed(g: &TerrainGenerator) -> bool {
+    generator_keys(g).1.contains_key("seed")
+}
+
+/// Shows every `[terrain.material]` key; returns whether `m` changed.
+pub fn show_material(ui: &mut Ui, m: &mut TerrainMaterial) -> bool {
+    let mut changed = false;
+    fields::grid("terrain-material").show(ui, |ui| {
+        changed |= fields::choice(ui, "shading", &mut m.shading, TERRAIN_SHADINGS);
+        changed |= fields::color(ui, "sand", &mut m.sand);
+        changed |= fields::color(ui, "grass", &mut m.grass);
+        changed |= fields::color(ui, "rock", &mut m.rock);
+        changed |= fields::color(ui, "snow", &mut m.snow);
+        changed |= fields::number(ui, "sand height", &mut m.sand_height, 0.1, " m");
+        changed |= fields::number(ui, "snow height", &mut m.snow_height, 0.1, " m");
+        changed |= fields::number(ui, "rock slope", &mut m.rock_slope_deg, 0.5, " deg");
+        changed |= fields::number(ui, "band transition", &mut m.transition, 0.05, " m");
+    });
+    key_paths::edits(
+        "terrain.material",
+        &["shading", "sand", "grass", "rock", "snow", "sand_height", "snow_height", "rock_slope_deg", "transition"],
+    );
+    changed
+}
+
 /// One press of a transform step button.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Step {
@@ -187,20 +223,48 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
         ui.label("heightmap PNG");
         ui.add(TextEdit::singleline(&mut form.heightmap_path).desired_width(160.0));
         if ui.button("Load").on_hover_text("Use this 8- or 16-bit grey PNG (and its .toml sidecar)").clicked() {
-            *terrain = Some(use_heightmap(terrain.as_ref(), PathBuf::from(&form.heightmap_path)));
-            changed = true;
+            // Read by the viewer at once, so that the outcome is reported here.
+            request = Some(FileRequest::LoadHeightmap(PathBuf::from(&form.heightmap_path)));
         }
         if terrain.is_some() && ui.button("Save").on_hover_text("Write the terrain as a 16-bit PNG + sidecar").clicked()
         {
             request = Some(FileRequest::SaveHeightmap(PathBuf::from(&form.heightmap_path)));
         }
     });
+    match &form.file_message {
+        Some(FileMessage::Done(m)) => {
+            ui.label(m);
+        }
+        Some(FileMessage::Failed(m)) => {
+            ui.colored_label(ui.visuals().error_fg_color, m);
+        }
+        None => {}
+    }
     if let Some(m) = &form.message {
         ui.colored_label(ui.visuals().error_fg_color, m);
     }
     let Some(t) = terrain else { return (changed, request) };
+    key_paths::edits("terrain", &["generator"]);
 
     let (name, mut keys) = generator_keys(&t.generator);
+    let names: Vec<&str> = keys.keys().map(String::as_str).collect();
+    key_paths::edits("terrain", &names);
+    if let TerrainGenerator::Heightmap(h) = &t.generator {
+        // A file, not a generator: nothing to regenerate; the way back is a generator.
+        ui.label(format!("Heights come from the file {} (edit its keys below).", h.path.display()));
+        if ui.button(format!("Back to a generator ({DEFAULT_GENERATOR})")).clicked() {
+            match switch_generator(Some(t), Some(DEFAULT_GENERATOR)) {
+                Ok(Some(g)) => {
+                    *t = g;
+                    form.message = None;
+                    changed = true;
+                }
+                Ok(None) => {}
+                Err(e) => form.message = Some(e.to_string()),
+            }
+            return (changed, request);
+        }
+    }
     if table_fields::show(ui, "terrain-keys", &mut keys) {
         match set_generator_keys(&name, keys) {
             Ok(g) => {
@@ -211,7 +275,7 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
             Err(e) => form.message = Some(e.to_string()),
         }
     }
-    if ui.button("Regenerate (new seed)").clicked() {
+    if has_seed(&t.generator) && ui.button("Regenerate (new seed)").clicked() {
         changed |= regenerate(t);
     }
     fields::grid("terrain-size").show(ui, |ui| {
@@ -237,6 +301,12 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
         });
         ui.end_row();
     });
+    if !matches!(t.generator, TerrainGenerator::Heightmap(_)) {
+        key_paths::edits("terrain", &["size"]);
+    }
+    key_paths::edits("terrain", &["extent"]);
+    ui.label("Material");
+    changed |= show_material(ui, &mut t.material);
     ui.label("Transform");
     fields::grid("terrain-transform").show(ui, |ui| {
         changed |= fields::vec3(ui, "translate (m)", &mut t.transform.translate, 0.1);
@@ -247,6 +317,7 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
         fields::number(ui, "rotate step", &mut form.rotate_step, 0.1, " deg");
         fields::number(ui, "scale step", &mut form.scale_step, 0.01, " x");
     });
+    key_paths::edits("terrain.transform", &["translate", "rotate_deg", "scale"]);
     let mut step = None;
     for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
         ui.horizontal(|ui| {
@@ -312,6 +383,20 @@ mod tests {
         let mut bad = toml::Table::new();
         bad.insert("no_such_key".into(), toml::Value::Integer(1));
         assert!(set_generator_keys("hills", bad).is_err());
+    }
+
+    #[test]
+    fn a_heightmap_has_no_seed_and_goes_back_to_a_generator_in_place() {
+        let mut spec = switch_generator(None, Some("hills")).unwrap().unwrap();
+        spec.transform.translate.y = -2.0;
+        assert!(has_seed(&spec.generator));
+        let file = use_heightmap(Some(&spec), PathBuf::from("h.png"));
+        assert!(!has_seed(&file.generator));
+        assert!(!has_seed(&switch_generator(None, Some("flat")).unwrap().unwrap().generator));
+        let back = switch_generator(Some(&file), Some(DEFAULT_GENERATOR)).unwrap().unwrap();
+        assert_eq!(generator_name(&back.generator), DEFAULT_GENERATOR);
+        assert_eq!(back.transform, spec.transform, "the placement stays");
+        back.build().unwrap();
     }
 
     #[test]

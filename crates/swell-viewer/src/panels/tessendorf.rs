@@ -11,7 +11,7 @@ use swell::water::{GerstnerWave, TessendorfParams, TessendorfWave, MAX_TESSENDOR
 use swell::Result;
 
 use super::wave_list::{self, cell, ListedWave, WaveListForm};
-use super::{dispersion, fields};
+use super::{dispersion, fields, keys};
 
 /// What the panel remembers between frames.
 pub type TessendorfForm = WaveListForm<TessendorfWave>;
@@ -21,6 +21,7 @@ pub const DEFAULT_LOOP_PERIOD_S: f32 = 30.0;
 
 impl ListedWave for TessendorfWave {
     const HEADERS: &'static [&'static str] = &["A m", "L m", "dir x", "dir z", "phase rad"];
+    const KEYS: &'static [&'static str] = &["amplitude", "wavelength", "direction", "phase"];
     const MAX: usize = MAX_TESSENDORF_WAVES;
     const ID: &'static str = "tessendorf";
     fn cells(&mut self, ui: &mut Ui) -> bool {
@@ -65,6 +66,7 @@ pub fn show(ui: &mut Ui, p: &mut TessendorfParams, form: &mut TessendorfForm) ->
             " s",
         );
     });
+    keys::edits("water", &["loop_period"]);
     ui.label(format!("sum of k A = {:.3} (at most 1, or the surface folds)", sum_ka(&p.waves)));
     changed | wave_list::show(ui, &mut p.waves, form)
 }

@@ -12,7 +12,7 @@ use swell::water::{GerstnerWave, SineWave};
 use swell::{Error, Result};
 
 use super::{airy, fft_ocean, fields, gerstner, noise, radial, river, sines, springs, steep_sines, tessendorf};
-use super::{water_transform, wave_set, PanelState};
+use super::{keys, water_transform, wave_set, PanelState};
 
 /// Shading models the panel offers, in menu order.
 pub const SHADINGS: &[Shading] = &[Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::BlinnPhong];
@@ -100,6 +100,61 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
     Ok(w)
 }
 
+/// Bottom depth (m) the panel starts from when the flat bottom is switched on.
+pub const DEFAULT_BOTTOM_DEPTH_M: f32 = 5.0;
+
+/// Shows every `[water.material]` key; returns whether `m` changed.
+pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
+    let mut changed = false;
+    fields::grid("water-material").show(ui, |ui| {
+        changed |= fields::color(ui, "colour", &mut m.color);
+        ui.label("shading");
+        egui::ComboBox::from_id_salt("water-shading").selected_text(shading_name(m.shading)).show_ui(ui, |ui| {
+            for &s in SHADINGS {
+                changed |= ui.selectable_value(&mut m.shading, s, shading_name(s)).changed();
+            }
+        });
+        ui.end_row();
+        changed |= fields::number(ui, "refractive index", &mut m.refractive_index, 0.001, "");
+        changed |= fields::number(ui, "specular", &mut m.specular, 0.01, "");
+        changed |= fields::number(ui, "shininess", &mut m.shininess, 1.0, "");
+        changed |= fields::rgb_numbers(ui, "absorption", &mut m.absorption, 0.001, " /m");
+        changed |= fields::optional_number(
+            ui,
+            "bottom depth (off: deep)",
+            &mut m.bottom_depth,
+            DEFAULT_BOTTOM_DEPTH_M,
+            0.05,
+            " m",
+        );
+        changed |= fields::color(ui, "bottom colour", &mut m.bottom_color);
+        changed |= fields::color(ui, "foam colour", &mut m.foam_color);
+        changed |= fields::optional_text(ui, "texture (procedural or a file)", &mut m.texture, "procedural");
+        changed |= fields::number(ui, "texture scale", &mut m.texture_scale, 0.05, " m");
+        changed |= fields::number(ui, "texture mix", &mut m.texture_mix, 0.01, "");
+        changed |= fields::vec2_xz(ui, "flow velocity (m/s)", &mut m.flow_velocity, 0.01);
+    });
+    keys::edits(
+        "water.material",
+        &[
+            "color",
+            "shading",
+            "refractive_index",
+            "specular",
+            "shininess",
+            "absorption",
+            "bottom_depth",
+            "bottom_color",
+            "foam_color",
+            "texture",
+            "texture_scale",
+            "texture_mix",
+            "flow_velocity",
+        ],
+    );
+    changed
+}
+
 /// Shows the water section; returns whether `water` changed.
 pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) -> bool {
     let mut changed = false;
@@ -118,6 +173,7 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) 
         );
         ui.end_row();
     });
+    keys::edits("water", &["model"]);
     if chosen != current {
         match chosen {
             None => {
@@ -149,19 +205,10 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) 
         });
         ui.end_row();
         changed |= fields::vec2_xz(ui, "center (m)", &mut w.surface.center, 1.0);
-        changed |= fields::color(ui, "colour", &mut w.material.color);
-        changed |= fields::number(ui, "refractive index", &mut w.material.refractive_index, 0.001, "");
-        ui.label("shading");
-        egui::ComboBox::from_id_salt("water-shading").selected_text(shading_name(w.material.shading)).show_ui(
-            ui,
-            |ui| {
-                for &s in SHADINGS {
-                    changed |= ui.selectable_value(&mut w.material.shading, s, shading_name(s)).changed();
-                }
-            },
-        );
-        ui.end_row();
     });
+    keys::edits("water", &["size", "cells", "center"]);
+    ui.label("Material");
+    changed |= show_material(ui, &mut w.material);
     changed |= water_transform::show(ui, &mut w.surface, &mut forms.water_transform);
     ui.separator();
     changed |= match &mut w.model {

@@ -10,8 +10,8 @@
 use eframe::egui::Ui;
 use swell::scene::WaterSurface;
 
-use super::fields;
 use super::terrain::{PAPER_MOVE_STEP_M, PAPER_ROTATE_STEP_DEG, SCALE_STEP};
+use super::{fields, keys};
 
 /// The step sizes (the panel's, not the scene's).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,6 +60,7 @@ pub fn show(ui: &mut Ui, s: &mut WaterSurface, form: &mut WaterTransformForm) ->
     fields::grid("water-transform").show(ui, |ui| {
         changed |= fields::number(ui, "yaw [-360, 360]", &mut s.yaw_deg, 0.5, " deg");
         changed |= fields::number(ui, "uniform scale (0, 10000]", &mut s.uniform_scale, 0.01, " x");
+        keys::edits("water", &["yaw_deg", "uniform_scale"]);
         fields::number(ui, "move step", &mut form.move_step, 0.1, " m");
         fields::number(ui, "rotate step", &mut form.rotate_step, 0.1, " deg");
         fields::number(ui, "scale step", &mut form.scale_step, 0.01, " x");

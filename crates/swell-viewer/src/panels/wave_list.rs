@@ -10,12 +10,14 @@ use eframe::egui::{self, DragValue, RichText, Ui};
 use swell::water::{wave_set, GerstnerWave, SineWave, WaveSetParams};
 use swell::{Error, Result};
 
-use super::fields;
+use super::{fields, keys};
 
 /// A wave the list can show: its table cells, its check and how a generated wave becomes one.
 pub trait ListedWave: Copy + PartialEq {
     /// Column headers of the cells, with units.
     const HEADERS: &'static [&'static str];
+    /// The scene-file keys of one wave (`water.waves[]`) the cells edit.
+    const KEYS: &'static [&'static str];
     /// Most waves the model takes.
     const MAX: usize;
     /// Grid id prefix (unique per model).
@@ -37,6 +39,7 @@ pub fn cell(ui: &mut Ui, v: &mut f32, speed: f64) -> bool {
 
 impl ListedWave for GerstnerWave {
     const HEADERS: &'static [&'static str] = &["A m", "L m", "S m/s", "dir x", "dir z", "Q"];
+    const KEYS: &'static [&'static str] = &["amplitude", "wavelength", "speed", "direction", "steepness"];
     const MAX: usize = swell::water::MAX_GERSTNER_WAVES;
     const ID: &'static str = "gerstner";
     const REGEN_STEEPNESS: bool = true;
@@ -58,6 +61,7 @@ impl ListedWave for GerstnerWave {
 
 impl ListedWave for SineWave {
     const HEADERS: &'static [&'static str] = &["A m", "L m", "S m/s", "dir x", "dir z"];
+    const KEYS: &'static [&'static str] = &["amplitude", "wavelength", "speed", "direction"];
     const MAX: usize = swell::water::MAX_SINE_WAVES;
     const ID: &'static str = "sines";
     fn cells(&mut self, ui: &mut Ui) -> bool {
@@ -157,6 +161,9 @@ pub fn show<W: ListedWave>(ui: &mut Ui, waves: &mut Vec<W>, form: &mut WaveListF
             ui.end_row();
         }
     });
+    if !waves.is_empty() {
+        keys::edits("water.waves[]", W::KEYS);
+    }
     if let Some(i) = delete {
         waves.remove(i);
         changed = true;

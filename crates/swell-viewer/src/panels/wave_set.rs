@@ -6,7 +6,7 @@
 use eframe::egui::Ui;
 use swell::water::{WaveSetParams, MAX_GERSTNER_WAVES};
 
-use super::{dispersion, fields};
+use super::{dispersion, fields, keys};
 
 /// Shows every key; returns whether `p` changed.
 pub fn show(ui: &mut Ui, p: &mut WaveSetParams) -> bool {
@@ -21,6 +21,18 @@ pub fn show(ui: &mut Ui, p: &mut WaveSetParams) -> bool {
         changed |= fields::number(ui, "steepness Q [0, 1]", &mut p.steepness, 0.01, "");
         changed |= dispersion::show(ui, &mut p.dispersion);
         changed |= fields::seed(ui, "seed", &mut p.seed);
+        keys::edits(
+            "water",
+            &[
+                "count",
+                "wind_direction_deg",
+                "spread_deg",
+                "median_wavelength",
+                "median_amplitude",
+                "steepness",
+                "seed",
+            ],
+        );
     });
     changed
 }

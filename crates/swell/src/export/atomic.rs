@@ -13,8 +13,11 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&mut dyn Write) -> Resul
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let tmp =
-        tempfile::Builder::new().prefix(".swell-").suffix(".tmp").tempfile_in(dir).map_err(|e| Error::io(path, e))?;
+    let tmp = tempfile::Builder::new()
+        .prefix(".swell-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| Error::io(path, without_temp_path(e)))?;
     {
         let mut out = BufWriter::new(tmp.as_file());
         write(&mut out)?;
@@ -30,6 +33,25 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&mut dyn Write) -> Resul
     tmp.as_file().sync_all().map_err(|e| Error::io(path, e))?;
     tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
     Ok(())
+}
+
+/// The OS error under tempfile's, which names the temporary file ("at path .swell-XXXX.tmp"): the
+/// user asked for the output, and the message names that instead.
+fn without_temp_path(e: std::io::Error) -> std::io::Error {
+    let code = e.raw_os_error().or_else(|| {
+        let mut source = e.get_ref().and_then(|inner| inner.source());
+        while let Some(s) = source {
+            if let Some(code) = s.downcast_ref::<std::io::Error>().and_then(|io| io.raw_os_error()) {
+                return Some(code);
+            }
+            source = s.source();
+        }
+        None
+    });
+    match code {
+        Some(code) => std::io::Error::from_raw_os_error(code),
+        None => std::io::Error::from(e.kind()),
+    }
 }
 
 #[cfg(test)]
@@ -54,5 +76,6 @@ mod tests {
     fn a_missing_directory_is_an_error_naming_the_file() {
         let e = write_atomically(Path::new("/nonexistent-dir/x.png"), |_| Ok(())).unwrap_err();
         assert!(e.to_string().starts_with("/nonexistent-dir/x.png"), "{e}");
+        assert!(!e.to_string().contains(".swell-"), "the temporary file is not the user's: {e}");
     }
 }

@@ -7,7 +7,7 @@
 //! | file | content |
 //! |---|---|
 //! | `disp_{k:04}.exr` | RGB `f32`: displacement (x, y, z) in metres of each grid point from its rest position (x, 0, z); height is G |
-//! | `normal_{k:04}.exr` | RGB `f32`: unit normal (x, y, z) |
+//! | `normal_{k:04}.exr` | RGB `f32`: unit normal, in world axes (x, y, z) or tangent space ([`NormalSpace`]) |
 //! | `foam_{k:04}.exr` | `Y` `f32`: foam coverage in [0, 1] (only when the model has foam) |
 //! | `*_{k:04}.png` | the same as 8- or 16-bit PNG (only with `png_bits`), encoded as `bake.json` says |
 //!
@@ -44,9 +44,11 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::bake_manifest::{BakeGrid, BakeManifest, BakeMap, BakePng};
+use super::bake_manifest::{
+    BakeAxes, BakeFoam, BakeGrid, BakeManifest, BakeMap, BakePng, BakeUnits, BAKE_MANIFEST_VERSION,
+};
 use super::frame_range::{FrameRange, Shard};
-use super::{write_atomically, write_exr_gray, write_exr_rgb, write_png_map, ExrCompression};
+use super::{write_atomically, write_exr_gray, write_exr_rgb, write_png_map, ExrCompression, NormalSpace};
 use crate::error::{Error, Result};
 use crate::math::GridSpec;
 use crate::scene::World;
@@ -86,6 +88,9 @@ pub struct BakeSettings {
     /// repeat the first ones when the model is periodic over the patch (FFT ocean), are left out,
     /// so the maps tile with wrap-around sampling (a 512-cell ocean gives 512 x 512 maps).
     pub tile: bool,
+    /// The space of the normal map: world (default) or tangent space of the flat patch with the
+    /// OpenGL or DirectX green convention.
+    pub normal_space: NormalSpace,
 }
 
 impl BakeSettings {
@@ -101,6 +106,7 @@ impl BakeSettings {
             compression: ExrCompression::None,
             loop_period_s: None,
             tile: false,
+            normal_space: NormalSpace::World,
         }
     }
 
@@ -115,8 +121,13 @@ impl BakeSettings {
             }
         }
         if let Some(r) = self.png_range_m {
+            if self.png_bits.is_none() {
+                return Err(Error::invalid("--png-range", "sets the range of PNG maps: it needs --png"));
+            }
             crate::error::check_positive("--png-range", r)?;
         }
+        let last = f64::from(self.frames.last) / self.fps;
+        crate::limits::check_time("--frames / --fps (the last frame's time)", last)?;
         if let Some(p) = self.loop_period_s {
             if !(p.is_finite() && p > 0.0) {
                 return Err(Error::out_of_range("loop period", p, "(0, inf) seconds"));
@@ -333,6 +344,10 @@ impl Bake {
         let width = self.map_size().0;
         displacement(&mesh.positions, &self.grid, width, &mut out.disp);
         copy_rows(&mesh.normals, self.grid.verts_x(), width, &mut out.normal);
+        let space = self.settings.normal_space;
+        if space != NormalSpace::World {
+            out.normal.par_iter_mut().for_each(|n| *n = space.from_world(*n));
+        }
         if !out.foam.is_empty() {
             copy_rows(&mesh.foam, self.grid.verts_x(), width, &mut out.foam);
         }
@@ -472,7 +487,10 @@ fn manifest(
     });
     let png_pattern = |m: MapKind| s.png_bits.map(|_| format!("{}_{{frame:04}}.png", m.name()));
     BakeManifest {
+        manifest_version: BAKE_MANIFEST_VERSION,
         swell_version: env!("CARGO_PKG_VERSION").into(),
+        units: BakeUnits::si(),
+        axes: BakeAxes::swell(),
         model,
         model_params: shortest_floats(serde_json::to_value(&params).expect("TOML values convert to JSON")),
         seed,
@@ -499,12 +517,14 @@ fn manifest(
                 png: png_pattern(m),
                 channels: match m {
                     MapKind::Disp => "R, G, B = displacement x, y (height), z in metres from the rest position (x, 0, z)",
-                    MapKind::Normal => "R, G, B = unit normal x, y, z",
+                    MapKind::Normal => s.normal_space.channels(),
                     MapKind::Foam => "Y = foam coverage in [0, 1]",
                 }
                 .into(),
             })
             .collect(),
+        normal_space: s.normal_space,
+        foam: maps.contains(&MapKind::Foam).then(foam_model),
         exr_compression: s.compression,
         png: s.png_bits.map(|bits| BakePng {
             bits,
@@ -515,6 +535,29 @@ fn manifest(
                 max = (1u32 << bits) - 1
             ),
         }),
+    }
+}
+
+/// What the foam map means. Every model with foam in swell makes it the same way
+/// (`water/foam.rs`): coverage from the Jacobian of the horizontal displacement, optionally kept
+/// and faded over time.
+fn foam_model() -> BakeFoam {
+    BakeFoam {
+        quantity: "coverage".into(),
+        range: [0.0, 1.0],
+        model: "jacobian-threshold".into(),
+        description: format!(
+            "fraction of the surface around each vertex covered by foam, in [0, 1]: foam forms where the choppy \
+             displacement compresses the surface (the Jacobian of the horizontal displacement of the first \
+             cascade falls below model_params.foam_threshold, coverage ramping up over {ramp} below it) and, \
+             with persistence, fades with time constant model_params.foam_fade_s as (c + {floor}) exp(-t / fade) \
+             - {floor}, vanishing after 4.2 fade times; the remembered foam is sampled on a fixed lattice of \
+             times {step} s apart (the nearest step dividing loop_period_s for a loop), so a frame's foam \
+             depends on its time alone, never on the frames baked before it (crates/swell/src/water/foam.rs)",
+            ramp = crate::water::FOAM_RAMP,
+            floor = crate::water::FOAM_FADE_FLOOR,
+            step = crate::water::FOAM_LATTICE_STEP_S,
+        ),
     }
 }
 
@@ -566,40 +609,71 @@ fn check_same_bake(path: &Path, manifest: &BakeManifest) -> Result<()> {
                 .map_err(|e| Error::Parse { path: path.display().to_string(), message: e.to_string() })
         };
         let (old, new) = (parse(&old)?, parse(&new)?);
-        let key = first_difference(&old, &new, String::new());
+        let version = |v: &serde_json::Value| v.get("manifest_version").and_then(|n| n.as_u64()).unwrap_or(1);
+        if version(&old) != version(&new) {
+            return Err(Error::invalid(
+                "--resume",
+                format!(
+                    "{} has manifest_version {}, this swell writes {}: it was baked by another version of swell; \
+                     bake into a new directory, or drop --resume to overwrite",
+                    path.display(),
+                    version(&old),
+                    version(&new)
+                ),
+            ));
+        }
+        let mut keys = Vec::new();
+        differences(&old, &new, String::new(), &mut keys);
+        let keys: Vec<String> = keys.iter().map(|k| format!("`{k}`")).collect();
+        let verb = if keys.len() == 1 { "differs" } else { "differ" };
         return Err(Error::invalid(
             "--resume",
             format!(
-                "{} describes a different bake (`{key}` differs); bake into a new directory, or drop --resume to overwrite",
-                path.display()
+                "{} describes a different bake ({} {verb}); bake into a new directory, or drop --resume to overwrite",
+                path.display(),
+                keys.join(", ")
             ),
         ));
     }
     Ok(())
 }
 
-/// The key path of the first difference between two JSON values.
-fn first_difference(a: &serde_json::Value, b: &serde_json::Value, at: String) -> String {
+/// Appends to `out` the key path of every difference between two JSON values, in key order,
+/// descending into objects (an array or a value that differs is one path).
+fn differences(a: &serde_json::Value, b: &serde_json::Value, at: String, out: &mut Vec<String>) {
     use serde_json::Value::Object;
-    if let (Object(a), Object(b)) = (a, b) {
-        for (k, va) in a {
-            let path = if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
-            match b.get(k) {
-                Some(vb) if vb == va => {}
-                Some(vb) => return first_difference(va, vb, path),
-                None => return path,
+    let path = |k: &str| if at.is_empty() { k.to_string() } else { format!("{at}.{k}") };
+    match (a, b) {
+        (Object(a), Object(b)) => {
+            for (k, va) in a {
+                match b.get(k) {
+                    Some(vb) if vb == va => {}
+                    Some(vb) => differences(va, vb, path(k), out),
+                    None => out.push(path(k)),
+                }
             }
+            out.extend(b.keys().filter(|k| !a.contains_key(*k)).map(|k| path(k)));
         }
-        if let Some(k) = b.keys().find(|k| !a.contains_key(*k)) {
-            return if at.is_empty() { k.clone() } else { format!("{at}.{k}") };
-        }
+        _ if a != b => out.push(at),
+        _ => {}
     }
-    at
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn differences_list_every_differing_key_path() {
+        let a = serde_json::json!({"fps": 24.0, "grid": {"cells": [8, 8], "tile": false}, "maps": [1], "x": 1});
+        let b = serde_json::json!({"fps": 30.0, "grid": {"cells": [8, 8], "tile": true}, "maps": [2], "y": 1});
+        let mut out = vec![];
+        differences(&a, &b, String::new(), &mut out);
+        assert_eq!(out, ["fps", "grid.tile", "maps", "x", "y"]);
+        out.clear();
+        differences(&a, &a, String::new(), &mut out);
+        assert!(out.is_empty());
+    }
 
     #[test]
     fn png_ranges_round_up_to_two_digits() {

@@ -2,7 +2,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::ExrCompression;
+use super::{ExrCompression, NormalSpace};
+
+/// The layout version of `bake.json` this swell writes. Version 2 added `manifest_version`,
+/// `units`, `normal_space`, `axes` and `foam`; the maps of a version 1 bake are those of a
+/// version 2 bake in world normal space.
+pub const BAKE_MANIFEST_VERSION: u32 = 2;
 
 /// The manifest of a bake directory, stored as `DIR/bake.json`.
 ///
@@ -11,8 +16,14 @@ use super::ExrCompression;
 /// same bake.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BakeManifest {
+    /// Layout version of this file, [`BAKE_MANIFEST_VERSION`]: readers check it first.
+    pub manifest_version: u32,
     /// Version of swell that baked (`CARGO_PKG_VERSION`).
     pub swell_version: String,
+    /// Units of every length and time in the bake and its maps.
+    pub units: BakeUnits,
+    /// swell's axes and how to turn them into other tools' axes.
+    pub axes: BakeAxes,
     /// The water model (`water.model` of the scene: `gerstner`, `sines`, ...).
     pub model: String,
     /// The model's and patch's keys from the scene's `[water]` section, as JSON.
@@ -32,6 +43,10 @@ pub struct BakeManifest {
     pub loop_frames: Option<u64>,
     /// The maps written per frame.
     pub maps: Vec<BakeMap>,
+    /// The space of the normal map (`--normal-space`).
+    pub normal_space: NormalSpace,
+    /// What the foam map means, when there is one.
+    pub foam: Option<BakeFoam>,
     /// Compression of the EXR files (all lossless).
     pub exr_compression: ExrCompression,
     /// The PNG versions, if `--png` was given.
@@ -81,4 +96,71 @@ pub struct BakePng {
     pub displacement_range_m: f32,
     /// The encodings, in words.
     pub encoding: String,
+}
+
+/// Units of a bake's lengths and times.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BakeUnits {
+    /// Unit of displacements, grid positions and sizes: `"metre"`.
+    pub length: String,
+    /// Unit of times and periods: `"second"`.
+    pub time: String,
+}
+
+impl BakeUnits {
+    /// swell's units: metres and seconds.
+    pub fn si() -> Self {
+        Self { length: "metre".into(), time: "second".into() }
+    }
+}
+
+/// A change of axes: `target = matrix * swell` for positions, displacements and world normals.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AxisConversion {
+    /// Row-major 3 x 3 matrix (entries -1, 0 or 1) taking swell (x, y, z) to the target's axes.
+    pub matrix: [[i8; 3]; 3],
+    /// The same in words, e.g. `Blender (X, Y, Z) = swell (x, -z, y)`.
+    pub formula: String,
+}
+
+/// swell's axes and conversions to the axes of tools that read bakes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BakeAxes {
+    /// swell's own convention, in words (right-handed, +Y up, water at rest at y = 0).
+    pub swell: String,
+    /// To Blender (right-handed, +Z up): a +90 degree rotation about X.
+    pub to_blender: AxisConversion,
+    /// To glTF 2.0 (right-handed, +Y up, metres): the identity.
+    pub to_gltf: AxisConversion,
+}
+
+impl BakeAxes {
+    /// The conversions swell's axes have.
+    pub fn swell() -> Self {
+        Self {
+            swell: "right-handed, +Y up, metres; water at rest at y = 0; map columns along +X, rows (top to bottom) along +Z"
+                .into(),
+            to_blender: AxisConversion {
+                matrix: [[1, 0, 0], [0, 0, -1], [0, 1, 0]],
+                formula: "Blender (X, Y, Z) = swell (x, -z, y): rotate +90 degrees about X (Z up)".into(),
+            },
+            to_gltf: AxisConversion {
+                matrix: [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
+                formula: "glTF (x, y, z) = swell (x, y, z): identity (both +Y up, right-handed, metres)".into(),
+            },
+        }
+    }
+}
+
+/// What a foam map holds.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BakeFoam {
+    /// The quantity stored: `"coverage"`, the fraction of the surface around a vertex that is foam.
+    pub quantity: String,
+    /// Range of the stored values: `[0, 1]`.
+    pub range: [f32; 2],
+    /// How the model makes foam, as a short name (`"jacobian-threshold"`).
+    pub model: String,
+    /// The model in words, naming its keys in `model_params`.
+    pub description: String,
 }

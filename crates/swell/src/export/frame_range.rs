@@ -32,12 +32,19 @@ impl FrameRange {
         Ok(Self { first, last })
     }
 
-    /// Parses `A..B` (whole frame numbers, both included); `key` names the option in errors.
+    /// Parses a frame list as every subcommand's `--frames` takes it: `A..B` (whole frame numbers,
+    /// both included) or a count `N` (frames `0..N-1`, N >= 1); `key` names the option in errors.
     pub fn parse(key: &str, s: &str) -> Result<Self> {
-        let bad =
-            || Error::invalid(key, format!("`{s}` is not A..B with whole frame numbers 0 <= A <= B (e.g. 0..239)"));
-        let (a, b) = s.trim().split_once("..").ok_or_else(bad)?;
-        let parse = |t: &str| -> Result<u32> {
+        let bad = || {
+            Error::invalid(
+                key,
+                format!(
+                    "`{s}` is not a frame count N (frames 0 to N-1) or a range A..B of whole frame numbers \
+                     0 <= A <= B, both included (e.g. 48 or 0..47)"
+                ),
+            )
+        };
+        let number = |t: &str| -> Result<u32> {
             let t = t.trim();
             if t.is_empty() || !t.bytes().all(|c| c.is_ascii_digit()) {
                 return Err(bad());
@@ -45,7 +52,13 @@ impl FrameRange {
             // More digits than u32 holds is still a frame number, only too large.
             t.parse::<u32>().map_err(|_| Error::out_of_range(key, s, format!("frames [0, {MAX_FRAME}]")))
         };
-        Self::new(key, parse(a)?, parse(b)?)
+        match s.trim().split_once("..") {
+            Some((a, b)) => Self::new(key, number(a)?, number(b)?),
+            None => match number(s)? {
+                0 => Err(Error::invalid(key, "0 frames: give a count N >= 1, or a range A..B")),
+                n => Self::new(key, 0, n - 1),
+            },
+        }
     }
 
     /// Number of frames (at least 1).
@@ -67,6 +80,8 @@ impl FrameRange {
 /// Shard `index` of `count`: the frames `first + index`, `first + index + count`, ... of a range.
 ///
 /// The shards `0/N` to `N-1/N` partition any range, whatever machine or order they run in.
+/// `--shard auto` takes `index` and `count` from a batch system's array-job variables
+/// (`resolve_shard` in `array_job.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
     /// Which shard, in [0, `count`).
@@ -113,7 +128,10 @@ mod tests {
         let r = FrameRange::parse("--frames", "3..5").unwrap();
         assert_eq!(r.iter().collect::<Vec<_>>(), [3, 4, 5]);
         assert_eq!(FrameRange::parse("--frames", "0..0").unwrap().len(), 1);
-        for bad in ["", "5", "a..b", "-1..4", "1..-4", "1...4", "1..4x", " .. "] {
+        // A count N is frames 0 to N-1: the same meaning in render, export and bake.
+        assert_eq!(FrameRange::parse("--frames", "48").unwrap(), FrameRange::new("f", 0, 47).unwrap());
+        assert!(FrameRange::parse("--frames", "0").unwrap_err().to_string().contains("0 frames"));
+        for bad in ["", "5x", "a..b", "-1..4", "1..-4", "1...4", "1..4x", " .. ", "-3", "2.5"] {
             let e = FrameRange::parse("--frames", bad).unwrap_err().to_string();
             assert!(e.starts_with("--frames: `") && e.contains("A..B"), "{bad}: {e}");
         }

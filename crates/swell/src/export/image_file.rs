@@ -17,7 +17,20 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()
     })
 }
 
-/// Writes a looping GIF animation of `frame_count` frames, atomically.
+/// Highest frame rate a GIF plays as written, frames per second: GIF delays are whole hundredths
+/// of a second, and players (browsers among them) show delays under 2/100 s as 10/100 s.
+pub const MAX_GIF_FPS: f64 = 50.0;
+
+/// GIF delay (hundredths of a second) of frame `k` of an animation at `fps` frames per second:
+/// frame k starts at `round(100 k / fps)`, so a 24 fps animation alternates 4 and 5 hundredths
+/// (4, 4, 5, 4, 4, 4, 5, ...) and keeps 24 frames per second on average instead of 25.
+pub fn gif_delay_cs(k: usize, fps: f64) -> u16 {
+    let start = |k: usize| (100.0 * k as f64 / fps).round();
+    (start(k + 1) - start(k)).clamp(1.0, 65535.0) as u16
+}
+
+/// Writes a looping GIF animation of `frame_count` frames at `fps` frames per second (in (0,
+/// [`MAX_GIF_FPS`]], delays from [`gif_delay_cs`]), atomically.
 ///
 /// `render(k, rgba)` fills `rgba` with frame k (RGBA8, `width` x `height`, top row first);
 /// `progress()` is called after each frame is written. Frames are produced in order, then
@@ -28,7 +41,7 @@ pub fn write_gif(
     width: u16,
     height: u16,
     frame_count: usize,
-    delay_cs: u16,
+    fps: f64,
     mut render: impl FnMut(usize, &mut Vec<u8>) -> Result<()>,
     mut progress: impl FnMut(),
 ) -> Result<()> {
@@ -45,10 +58,11 @@ pub fn write_gif(
             }
             let frames: Vec<gif::Frame> = buffers[..n]
                 .par_iter_mut()
-                .map(|rgba| {
+                .enumerate()
+                .map(|(k, rgba)| {
                     // Speed 10 is the gif crate's recommended balance; 1 is best and ~10x slower.
                     let mut f = gif::Frame::from_rgba_speed(width, height, rgba, 10);
-                    f.delay = delay_cs;
+                    f.delay = gif_delay_cs(start + k, fps);
                     f
                 })
                 .collect();
@@ -91,4 +105,21 @@ pub fn write_png_map(path: &Path, width: u32, height: u32, channels: u8, bits: u
         image::ImageEncoder::write_image(encoder, &bytes, width, height, color)
             .map_err(|e| Error::Image { path: path.into(), message: e.to_string() })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gif_delays_keep_the_frame_rate_on_average() {
+        for fps in [24.0, 30.0, 12.5, 50.0, 7.0] {
+            let frames = (fps * 12.0) as usize; // 12 s
+            let total: u32 = (0..frames).map(|k| u32::from(gif_delay_cs(k, fps))).sum();
+            // Frame k starts within half a hundredth of k / fps: 12 s take 1200 hundredths.
+            assert!((f64::from(total) - 1200.0).abs() <= 0.5, "{fps} fps: {total}");
+        }
+        let d: Vec<u16> = (0..6).map(|k| gif_delay_cs(k, 24.0)).collect();
+        assert_eq!(d, [4, 4, 5, 4, 4, 4]);
+    }
 }

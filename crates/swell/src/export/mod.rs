@@ -3,6 +3,7 @@
 mod atomic;
 mod image_file;
 // Meshes (OBJ, glTF), float maps (EXR) and bake sequences: issue 8.
+mod array_job;
 mod bake;
 mod bake_manifest;
 mod exr;
@@ -10,15 +11,20 @@ mod frame_range;
 mod gltf;
 mod heightmap_exr;
 mod named_mesh;
+mod normal_space;
 mod obj;
 
 pub use self::exr::{write_exr_gray, write_exr_rgb, ExrCompression};
+pub use array_job::{resolve_shard, ResolvedShard, SHARD_COUNT_VAR};
 pub use atomic::write_atomically;
 pub use bake::{model_loop_period, Bake, BakeSettings, MAX_FPS, MIN_PNG_RANGE_M, PNG_RANGE_HEADROOM};
-pub use bake_manifest::{BakeGrid, BakeManifest, BakeMap, BakePng};
+pub use bake_manifest::{
+    AxisConversion, BakeAxes, BakeFoam, BakeGrid, BakeManifest, BakeMap, BakePng, BakeUnits, BAKE_MANIFEST_VERSION,
+};
 pub use frame_range::{FrameRange, Shard, MAX_FRAME, MAX_SHARDS};
 pub use gltf::{gltf_document, write_glb, write_gltf};
 pub use heightmap_exr::write_heightmap_exr;
-pub use image_file::{write_gif, write_png, write_png_map};
+pub use image_file::{gif_delay_cs, write_gif, write_png, write_png_map, MAX_GIF_FPS};
 pub use named_mesh::{world_meshes, NamedMesh};
+pub use normal_space::NormalSpace;
 pub use obj::{encode_obj, write_obj};

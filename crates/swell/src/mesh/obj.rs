@@ -115,6 +115,16 @@ pub fn parse_obj(text: &str, source: &str) -> Result<TriangleMesh> {
             _ => {}
         }
     }
+    if mesh.indices.is_empty() {
+        // An empty image would look like a renderer bug; say what the file lacks instead.
+        return Err(Error::Parse {
+            path: source.into(),
+            message: format!(
+                "no triangles: a mesh needs `v` vertex lines and `f` face lines ({} vertices, 0 faces read)",
+                mesh.positions.len()
+            ),
+        });
+    }
     if without_normal.iter().any(|&b| b) {
         fill_missing_normals(&mut mesh, &without_normal);
     }
@@ -155,6 +165,14 @@ mod tests {
         assert_eq!(m.indices.len(), 9);
         assert!(m.normals.iter().all(|n| (*n - Vec3::Z).length() < 1e-6), "{:?}", m.normals);
         assert_eq!(m.positions.len(), 4 + 3);
+    }
+
+    #[test]
+    fn a_file_without_triangles_is_refused() {
+        for text in ["", "v 0 0 0\nv 1 0 0\n", "{\"eye\": [0, 1, 2]}\n"] {
+            let e = parse_obj(text, "m.obj").unwrap_err().to_string();
+            assert!(e.starts_with("m.obj: no triangles"), "{e}");
+        }
     }
 
     #[test]

@@ -57,6 +57,35 @@ fn current_version() -> u32 {
     SCENE_VERSION
 }
 
+/// Rewrites every float of `table` (nested tables and arrays included) that is exactly an `f32` as
+/// the `f64` of that `f32`'s shortest decimal form, so that a saved `near = 0.1` is written as
+/// `0.1`, not `0.10000000149011612` (the `f64` serde widens the `f32` to).
+///
+/// Reading the shortest form back as `f32` gives the same `f32` bits (shortest round-trip
+/// formatting guarantees it), so the scene loads back equal. A float that is not exactly an `f32`
+/// (an `f64` parameter) is left as it is.
+fn shortest_floats(table: &mut toml::Table) {
+    table.iter_mut().for_each(|(_, v)| shortest_float(v));
+}
+
+/// [`shortest_floats`] for one value.
+fn shortest_float(value: &mut toml::Value) {
+    match value {
+        toml::Value::Float(x) => {
+            let single = *x as f32;
+            if single.is_finite() && f64::from(single) == *x {
+                // `Display` of an f32 is its shortest decimal that reads back to the same f32.
+                if let Ok(short) = single.to_string().parse::<f64>() {
+                    *x = short;
+                }
+            }
+        }
+        toml::Value::Array(items) => items.iter_mut().for_each(shortest_float),
+        toml::Value::Table(t) => shortest_floats(t),
+        _ => {}
+    }
+}
+
 impl Scene {
     /// Parses and validates a scene; `source` (a path or `preset NAME`) is named in errors.
     pub fn from_toml(text: &str, source: &str) -> Result<Self> {
@@ -102,7 +131,7 @@ impl Scene {
             terrain,
             render: file.render,
         };
-        scene.validate()?;
+        scene.validate().map_err(|e| e.in_source(source))?;
         Ok(scene)
     }
 
@@ -122,6 +151,7 @@ impl Scene {
         if let Some(t) = &self.terrain {
             table.insert("terrain".into(), toml::Value::Table(t.to_table()));
         }
+        shortest_floats(&mut table);
         toml::to_string_pretty(&table).expect("a TOML table always serialises")
     }
 
@@ -164,11 +194,14 @@ impl Scene {
         Ok(())
     }
 
-    /// Makes relative file paths in the scene (heightmaps) relative to `dir`, the directory of the
-    /// scene file they were written in.
+    /// Makes relative file paths in the scene (heightmaps, water textures) relative to `dir`, the
+    /// directory of the scene file they were written in.
     pub fn resolve_paths(&mut self, dir: &std::path::Path) {
         if let Some(t) = &mut self.terrain {
             t.resolve_paths(dir);
+        }
+        if let Some(w) = &mut self.water {
+            w.material.resolve_paths(dir);
         }
     }
 }
@@ -200,8 +233,9 @@ mod tests {
 
     #[test]
     fn bad_input_names_key_value_and_range() {
-        let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidth = 0\n"), "t").unwrap_err();
-        assert_eq!(e.to_string(), "render.width = 0 is outside [1, 16384]");
+        let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidth = 0\n"), "t.toml").unwrap_err();
+        assert_eq!(e.to_string(), "t.toml: render.width = 0 is outside [1, 16384]");
+        assert_eq!(e.without_source().to_string(), "render.width = 0 is outside [1, 16384]");
         let e = Scene::from_toml(&format!("{MINIMAL}[render]\nwidht = 5\n"), "t").unwrap_err();
         assert!(e.to_string().contains("unknown field `widht`"), "{e}");
         let e =
@@ -210,10 +244,36 @@ mod tests {
         assert!(e.to_string().contains("light[0]"), "{e}");
         let e = Scene::from_toml("version = 2\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n", "t")
             .unwrap_err();
-        assert!(e.to_string().starts_with("version = 2 is outside"), "{e}");
+        assert!(e.to_string().starts_with("t: version = 2 is outside"), "{e}");
         let e = Scene::from_toml("version = 1\n[camera\n", "f.toml").unwrap_err();
         assert!(e.to_string().starts_with("f.toml: TOML parse error"), "{e}");
         let e = Scene::from_toml(&format!("{MINIMAL}[render]\nexposure = nan\n"), "t").unwrap_err();
-        assert!(e.to_string().starts_with("render.exposure = NaN"), "{e}");
+        assert!(e.to_string().starts_with("t: render.exposure = NaN"), "{e}");
+    }
+
+    /// Every float of a saved scene is written in its shortest form: no `0.10000000149011612`.
+    #[test]
+    fn saved_floats_are_shortest_and_load_back_equal() {
+        let mut s = Scene::from_toml(MINIMAL, "t").unwrap();
+        s.camera.near = 0.1;
+        s.camera.fov_y_deg = 33.3;
+        s.render.exposure = 1.7;
+        let text = s.to_toml();
+        assert!(text.contains("near = 0.1\n"), "{text}");
+        assert!(text.contains("fov_y_deg = 33.3\n"), "{text}");
+        assert_eq!(Scene::from_toml(&text, "t").unwrap(), s);
+        for p in super::super::PRESETS {
+            let scene = super::super::preset(p.name).unwrap();
+            let text = scene.to_toml();
+            assert_eq!(Scene::from_toml(&text, "t").unwrap(), scene, "preset {}", p.name);
+            // Float noise: 8 or more significant digits after the point, as an f32 widened to
+            // f64 prints (0.10000000149011612), never a shortest f32 form (at most 9, rarely).
+            for line in text.lines() {
+                for number in line.split(|c: char| !(c.is_ascii_digit() || c == '.')) {
+                    let decimals = number.split_once('.').map_or(0, |(_, d)| d.len());
+                    assert!(decimals < 10, "preset {}: float noise in `{line}`", p.name);
+                }
+            }
+        }
     }
 }

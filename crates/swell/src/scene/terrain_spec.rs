@@ -246,7 +246,12 @@ impl TerrainSpec {
                     height_offset: h.height_offset,
                     extent: self.extent,
                 },
-            ),
+            )
+            // A file that cannot be read is named with the key that names it.
+            .map_err(|e| match e {
+                Error::Io { .. } | Error::Image { .. } => Error::invalid("terrain.path", e.to_string()),
+                other => other,
+            }),
         }
     }
 

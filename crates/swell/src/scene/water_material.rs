@@ -102,12 +102,25 @@ impl WaterMaterial {
         Ok(())
     }
 
+    /// Makes a relative texture path relative to `dir`, the directory of the scene file that names
+    /// it (as terrain heightmaps are).
+    pub fn resolve_paths(&mut self, dir: &std::path::Path) {
+        if let Some(t) = &mut self.texture {
+            if t != "procedural" && std::path::Path::new(t).is_relative() {
+                *t = dir.join(&*t).to_string_lossy().into_owned();
+            }
+        }
+    }
+
     /// Loads (or generates) the texture the material names; `None` without one.
     pub fn load_texture(&self) -> Result<Option<Texture>> {
         match self.texture.as_deref() {
             None => Ok(None),
             Some("procedural") => Ok(Some(Texture::procedural_water(self.color))),
-            Some(path) => Texture::from_file(std::path::Path::new(path)).map(Some),
+            // A file that cannot be read is named with the key that names it.
+            Some(path) => Texture::from_file(std::path::Path::new(path))
+                .map(Some)
+                .map_err(|e| Error::invalid("water.material.texture", e.to_string())),
         }
     }
 }

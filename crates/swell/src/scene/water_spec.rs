@@ -185,6 +185,17 @@ impl WaterModelSpec {
         }
     }
 
+    /// Fixed time steps a time-stepped model takes from its start to reach time `t` (s), its
+    /// warm-up included: the spring mesh integrates from t = 0, so a late time costs steps (the
+    /// CLI shows progress and refuses more than [`crate::water::MAX_STEPS_PER_ADVANCE`] up front).
+    /// `None` for the models that are functions of time.
+    pub fn steps_to(&self, t: f64) -> Option<f64> {
+        match self {
+            WaterModelSpec::Springs(p) => Some(((t + f64::from(p.warm_up)) / f64::from(p.time_step)).floor().max(0.0)),
+            _ => None,
+        }
+    }
+
     /// Whether the built model keeps a state that a click or a stone can disturb
     /// ([`WaveModel::disturb`] returns true): the spring mesh. Closed-form models are functions
     /// of time alone. Lets a caller (the viewer) decide without building the model.
@@ -315,7 +326,11 @@ pub(crate) fn deserialize_at<T: DeserializeOwned>(
             (false, p) if p.starts_with('[') => format!("{prefix}{p}"),
             (false, p) => format!("{prefix}.{p}"),
         };
-        Error::Parse { path: source.to_string(), message: format!("{key}: {}", e.into_inner()) }
+        // toml's own message may end in a line `in `waves.speed``: the key path in front says it
+        // already, more fully.
+        let message = e.into_inner().to_string();
+        let message = message.lines().filter(|l| !l.starts_with("in `")).collect::<Vec<_>>().join(" ");
+        Error::Parse { path: source.to_string(), message: format!("{key}: {}", message.trim_end()) }
     })
 }
 

@@ -213,7 +213,7 @@ mod tests {
                  [water]\nmodel = 'noise'\nscale = 3.0\n{keys}\n"
             );
             let e = Scene::from_toml(&text, "t").err().unwrap();
-            assert_eq!(e.to_string(), message);
+            assert_eq!(e.to_string(), format!("t: {message}"));
         }
     }
 

@@ -215,6 +215,8 @@ pub struct HeightmapOverrides {
 /// Loads heightmap `path` (any 8- or 16-bit grayscale PNG) as a field, taking the mapping from
 /// `overrides` first, then from the sidecar.
 pub fn load_heightmap(path: &Path, overrides: HeightmapOverrides) -> Result<HeightField> {
+    // A missing image is the first thing to say, before the sidecar it would have had.
+    std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
     let sidecar = read_sidecar(path)?;
     let height_scale = overrides.height_scale.or(sidecar.map(|s| s.height_scale)).ok_or_else(|| {
         Error::invalid(

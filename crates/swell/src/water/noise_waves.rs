@@ -70,7 +70,13 @@ impl NoiseParams {
         check_non_negative(&format!("{key}.amplitude"), self.amplitude)?;
         check_positive(&format!("{key}.scale"), self.scale)?;
         check_count(&format!("{key}.octaves"), self.octaves, 1, MAX_NOISE_OCTAVES)?;
-        check_range(&format!("{key}.persistence"), self.persistence, f32::MIN_POSITIVE, 1.0)?;
+        if !(self.persistence > 0.0 && self.persistence <= 1.0) {
+            return Err(crate::error::Error::out_of_range(
+                format!("{key}.persistence"),
+                crate::error::Human(self.persistence),
+                "(0, 1]",
+            ));
+        }
         check_range(&format!("{key}.lacunarity"), self.lacunarity, 1.0, 4.0)?;
         check_finite_vec(&format!("{key}.drift"), &self.drift.to_array())?;
         check_non_negative(&format!("{key}.evolution"), self.evolution)?;

@@ -548,7 +548,7 @@ impl WaveModel for SpringMesh {
         if wanted - self.steps as f64 > MAX_STEPS_PER_ADVANCE as f64 {
             return Err(Error::out_of_range(
                 "time",
-                t,
+                crate::error::Human(t),
                 format!(
                     "at most {MAX_STEPS_PER_ADVANCE} spring-mesh steps ({} s) past the current state",
                     MAX_STEPS_PER_ADVANCE as f64 * dt
