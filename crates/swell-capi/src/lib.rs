@@ -122,9 +122,12 @@ struct Failure(SwellResult, String);
 impl From<Error> for Failure {
     fn from(e: Error) -> Self {
         let code = match &e {
-            Error::Parse { .. } | Error::UnknownPreset { .. } | Error::Io { .. } | Error::Image { .. } => {
-                SwellResult::Scene
-            }
+            // InSource: a key error found in the scene text ("toml: water.cells[0] = ...").
+            Error::Parse { .. }
+            | Error::InSource { .. }
+            | Error::UnknownPreset { .. }
+            | Error::Io { .. }
+            | Error::Image { .. } => SwellResult::Scene,
             Error::Unstable(_) => SwellResult::Unstable,
             // Keys of a scene (water.cells[0]) are scene errors; the API's own parameters (t,
             // positions_len) are argument errors.

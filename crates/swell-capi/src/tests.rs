@@ -142,7 +142,7 @@ fn bad_scenes_are_scene_errors_with_the_cli_s_message() {
     .unwrap();
     assert_eq!(unsafe { swell_water_from_toml(bad.as_ptr(), &mut out) }, SwellResult::Scene);
     assert!(out.is_null());
-    assert_eq!(last_error(), "water.waves[0].steepness = 1.7 is outside [0, 1]");
+    assert_eq!(last_error(), "toml: water.waves[0].steepness = 1.7 is outside [0, 1]");
     let syntax = CString::new("version = 1\n[camera\n").unwrap();
     assert_eq!(unsafe { swell_water_from_toml(syntax.as_ptr(), &mut out) }, SwellResult::Scene);
     assert!(last_error().starts_with("toml: TOML parse error"), "{}", last_error());

@@ -161,8 +161,8 @@ fn the_c_and_cpp_examples_agree_with_the_library_and_pass_valgrind() {
         ),
         "{c_out}"
     );
-    assert!(c_out.contains("bad scene -> 3: water.grid = 100 is outside powers of two in [16, 2048]"), "{c_out}");
-    assert!(cpp_out.contains("bad scene: water.grid = 100 is outside powers of two in [16, 2048]"), "{cpp_out}");
+    assert!(c_out.contains("bad scene -> 3: toml: water.grid = 100 is outside powers of two in [16, 2048]"), "{c_out}");
+    assert!(cpp_out.contains("bad scene: toml: water.grid = 100 is outside powers of two in [16, 2048]"), "{cpp_out}");
     // The render is the same frame in both.
     let render = |s: &str| s.lines().find(|l| l.starts_with("rendered")).map(String::from);
     assert_eq!(render(&c_out), render(&cpp_out));

@@ -405,7 +405,7 @@ mod tests {
         let e = Water::from_toml(no_water, "t").unwrap_err().to_string();
         assert!(e.starts_with("water: the scene has no [water] section"), "{e}");
         let e = Water::from_toml("[water]\nmodel = 'sines'\ncells = [0, 4]\n", "t").unwrap_err();
-        assert_eq!(e.to_string(), "water.cells[0] = 0 is outside [1, 4096]");
+        assert_eq!(e.to_string(), "t: water.cells[0] = 0 is outside [1, 4096]");
         // Only [water] is required.
         let w = Water::from_toml("[water]\nmodel = 'sines'\ncells = [8, 4]\n", "t").unwrap();
         assert_eq!((w.rows(), w.cols()), (5, 9));
