@@ -35,23 +35,12 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&mut dyn Write) -> Resul
     Ok(())
 }
 
-/// The OS error under tempfile's, which names the temporary file ("at path .swell-XXXX.tmp"): the
-/// user asked for the output, and the message names that instead.
+/// tempfile's error without its " at path .swell-XXXX.tmp": the user asked for the output, which
+/// the message names instead. The OS's own words stay ("No such file or directory (os error 2)").
 fn without_temp_path(e: std::io::Error) -> std::io::Error {
-    let code = e.raw_os_error().or_else(|| {
-        let mut source = e.get_ref().and_then(|inner| inner.source());
-        while let Some(s) = source {
-            if let Some(code) = s.downcast_ref::<std::io::Error>().and_then(|io| io.raw_os_error()) {
-                return Some(code);
-            }
-            source = s.source();
-        }
-        None
-    });
-    match code {
-        Some(code) => std::io::Error::from_raw_os_error(code),
-        None => std::io::Error::from(e.kind()),
-    }
+    let text = e.to_string();
+    let text = text.split(" at path ").next().unwrap_or(&text).to_string();
+    std::io::Error::new(e.kind(), text)
 }
 
 #[cfg(test)]
@@ -77,5 +66,6 @@ mod tests {
         let e = write_atomically(Path::new("/nonexistent-dir/x.png"), |_| Ok(())).unwrap_err();
         assert!(e.to_string().starts_with("/nonexistent-dir/x.png"), "{e}");
         assert!(!e.to_string().contains(".swell-"), "the temporary file is not the user's: {e}");
+        assert!(e.to_string().contains("No such file or directory"), "the OS's words stay: {e}");
     }
 }
