@@ -353,36 +353,28 @@ fn normal_space_is_checked_recorded_and_part_of_what_resume_compares() {
     assert!(!o.status.success() && stderr(&o).contains("`normal_space`"), "{}", stderr(&o));
     assert!(files(&out) == before);
     // The same options resume.
-    let o = swell(&[
-        "bake",
-        "--scene",
-        scene,
-        "--frames",
-        "0..1",
-        "--normal-space",
-        "tangent-dx",
-        "--resume",
-        "--out",
-        out_s,
-    ]);
+    let resume_dx = || {
+        swell(&[
+            "bake",
+            "--scene",
+            scene,
+            "--frames",
+            "0..1",
+            "--normal-space",
+            "tangent-dx",
+            "--resume",
+            "--out",
+            out_s,
+        ])
+    };
+    let o = resume_dx();
     assert!(o.status.success() && stderr(&o).contains("2 frames already complete"), "{}", stderr(&o));
 
     // A directory baked by a swell before manifest_version 2 is refused with the reason.
     let mut old = manifest.clone();
     old.as_object_mut().unwrap().remove("manifest_version");
     std::fs::write(out.join("bake.json"), serde_json::to_vec_pretty(&old).unwrap()).unwrap();
-    let o = swell(&[
-        "bake",
-        "--scene",
-        scene,
-        "--frames",
-        "0..1",
-        "--normal-space",
-        "tangent-dx",
-        "--resume",
-        "--out",
-        out_s,
-    ]);
+    let o = resume_dx();
     assert!(!o.status.success(), "an old manifest was resumed");
     assert!(stderr(&o).contains("has manifest_version 1, this swell writes 2"), "{}", stderr(&o));
 }

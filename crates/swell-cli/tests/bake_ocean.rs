@@ -8,7 +8,7 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{files, stderr, swell, SWELL};
+use common::{files, read_exr_y, stderr, swell, SWELL};
 
 /// A water-only scene: a rough 128² FFT ocean with foam over its own 96 m patch.
 const OCEAN: &str = "[water]\nmodel = \"fft\"\ngrid = 128\npatch_size = 96.0\nwind_speed = 20.0\n\
@@ -131,24 +131,6 @@ fn water_only_scenes_bake_export_and_give_stats() {
     assert!(stderr(&o).starts_with("error: water: the scene has no [water]"), "{}", stderr(&o));
     let o = swell(&["stats", "--scene", empty.to_str().unwrap()]);
     assert!(stderr(&o).starts_with("error: water: the scene has no [water]"), "{}", stderr(&o));
-}
-
-fn read_exr_y(path: &Path) -> Vec<f32> {
-    use exr::prelude::*;
-    let img = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .specific_channels()
-        .required("Y")
-        .collect_pixels(
-            |res, _| (res.width(), vec![0.0f32; res.width() * res.height()]),
-            |(w, px), pos, (y,): (f32,)| px[pos.y() * *w + pos.x()] = y,
-        )
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .unwrap();
-    img.layer_data.channel_data.pixels.1
 }
 
 #[test]

@@ -8,6 +8,9 @@ use std::process::Command;
 use glam::{Vec2, Vec3};
 use swell::Water;
 
+mod common;
+use common::read_exr_y;
+
 const SWELL: &str = env!("CARGO_BIN_EXE_swell");
 
 fn swell(args: &[&str]) -> String {
@@ -30,24 +33,6 @@ fn read_exr_rgb(path: &Path) -> Vec<Vec3> {
         |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b),
     )
     .unwrap();
-    img.layer_data.channel_data.pixels.1
-}
-
-fn read_exr_y(path: &Path) -> Vec<f32> {
-    use exr::prelude::{ReadChannels, ReadLayers, ReadSpecificChannel};
-    let img = exr::prelude::read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .specific_channels()
-        .required("Y")
-        .collect_pixels(
-            |res, _| (res.width(), vec![0.0f32; res.width() * res.height()]),
-            |(w, px), pos, (y,): (f32,)| px[pos.y() * *w + pos.x()] = y,
-        )
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .unwrap();
     img.layer_data.channel_data.pixels.1
 }
 

@@ -29,3 +29,22 @@ pub fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
         .map(|e| (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap()))
         .collect()
 }
+
+/// The one-channel (`Y`) float EXR at `path` (a foam map), row-major.
+pub fn read_exr_y(path: &Path) -> Vec<f32> {
+    use exr::prelude::{ReadChannels, ReadLayers, ReadSpecificChannel};
+    let img = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required("Y")
+        .collect_pixels(
+            |res, _| (res.width(), vec![0.0f32; res.width() * res.height()]),
+            |(w, px), pos, (y,): (f32,)| px[pos.y() * *w + pos.x()] = y,
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .unwrap();
+    img.layer_data.channel_data.pixels.1
+}
