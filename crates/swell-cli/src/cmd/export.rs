@@ -24,15 +24,15 @@ pub fn run(a: ExportArgs) -> Result<()> {
     if !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= MAX_FPS) {
         return Err(Error::out_of_range("--fps", a.fps, format!("(0, {MAX_FPS}]")));
     }
-    let last_time = frames.map_or(a.time, |r| f64::from(r.last) / a.fps);
-    swell::limits::check_time("--frames / --fps (the last frame's time)", last_time)?;
+    // The latest time the command simulates (`--time` and `--frames` exclude each other).
+    let (last_key, last_time) = match frames {
+        Some(r) => ("--frames / --fps (the last frame's time)", f64::from(r.last) / a.fps),
+        None => ("--time", a.time),
+    };
+    swell::limits::check_time(last_key, last_time)?;
     super::check_output_dir(&a.out)?;
     let scene = load_scene(&a.source)?;
-    super::check_steps(
-        &scene,
-        if frames.is_some() { "--frames / --fps (the last frame's time)" } else { "--time" },
-        last_time.max(a.time),
-    )?;
+    super::check_steps(&scene, last_key, last_time)?;
     let aspect = scene.render.width as f32 / scene.render.height as f32;
     let pool = thread_pool(a.threads)?;
     pool.install(|| {

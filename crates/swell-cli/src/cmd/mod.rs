@@ -87,8 +87,7 @@ pub fn check_steps(scene: &Scene, key: &str, t: f64) -> Result<()> {
     if steps <= MAX_STEPS_PER_ADVANCE as f64 {
         return Ok(());
     }
-    let reach = water.model.steps_to(0.0).map_or(0.0, |s| s);
-    let dt = t / (steps - reach).max(1.0);
+    let reachable = water.model.time_after_steps(MAX_STEPS_PER_ADVANCE as f64).unwrap_or(0.0);
     Err(Error::out_of_range(
         key,
         Human(t),
@@ -96,7 +95,7 @@ pub fn check_steps(scene: &Scene, key: &str, t: f64) -> Result<()> {
             "the times the spring mesh reaches in at most {} steps from t = 0 (up to about {} s at its \
              time_step, warm-up included): it would need {} steps",
             group_digits(MAX_STEPS_PER_ADVANCE as f64),
-            group_digits(((MAX_STEPS_PER_ADVANCE as f64 - reach) * dt).floor()),
+            group_digits(reachable.floor()),
             group_digits(steps)
         ),
     ))

@@ -41,15 +41,14 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let output = resolve_output(&a)?;
     let time = a.time.unwrap_or(0.0);
     swell::limits::check_time("--time", time)?;
-    if let Output::Gif { frames } = &output {
-        swell::limits::check_time("--time + last frame / --fps", time + f64::from(frames.last) / a.fps)?;
-    }
-    let mut scene = load_scene(&a.source)?;
+    // The latest time the command simulates: the frame's, or the animation's last frame's.
     let last_time = match &output {
         Output::Png => time,
         Output::Gif { frames } => time + f64::from(frames.last) / a.fps,
     };
-    super::check_steps(&scene, "--time", time.max(last_time))?;
+    swell::limits::check_time("--time + last frame / --fps", last_time)?;
+    let mut scene = load_scene(&a.source)?;
+    super::check_steps(&scene, "--time", last_time)?;
     if let Some(size) = &a.size {
         let (w, h) = parse_size(size)?;
         scene.render.width = w;

@@ -196,6 +196,16 @@ impl WaterModelSpec {
         }
     }
 
+    /// The time (s) a time-stepped model reaches after `steps` of its fixed steps from its start,
+    /// its warm-up subtracted: the inverse of [`WaterModelSpec::steps_to`]. `None` for the models
+    /// that are functions of time.
+    pub fn time_after_steps(&self, steps: f64) -> Option<f64> {
+        match self {
+            WaterModelSpec::Springs(p) => Some(steps * f64::from(p.time_step) - f64::from(p.warm_up)),
+            _ => None,
+        }
+    }
+
     /// Whether the built model keeps a state that a click or a stone can disturb
     /// ([`WaveModel::disturb`] returns true): the spring mesh. Closed-form models are functions
     /// of time alone. Lets a caller (the viewer) decide without building the model.

@@ -167,7 +167,7 @@ impl FftOcean {
     }
 
     /// Scales every cascade's amplitudes so that the largest |height| on the first cascade's grid
-    /// at t = 0 (the others sampled there) is `max_height` m, and re-synthesises t = 0. Blender's
+    /// at t = 0 (the others sampled there) is `max_height` m; the caller synthesises again. Blender's
     /// "normalise factor"; a flat sea stays flat.
     fn normalise_max_height(&mut self, max_height: f32) {
         self.synthesise(0.0);
@@ -180,7 +180,6 @@ impl FftOcean {
         for c in &mut self.cascades {
             c.scale_amplitudes(factor);
         }
-        self.foam.reset();
     }
 
     /// The parameters, as validated.

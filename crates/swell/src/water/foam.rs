@@ -226,7 +226,8 @@ impl FoamField {
     /// The fused update for the frame at time `t` (s), after the steps of [`FoamField::plan`]:
     /// the lattice's foam faded to `t`, or no memory without persistence.
     pub fn frame_update(&mut self, t: f64) -> FoamUpdate<'_> {
-        let Some(k) = self.lattice_index.filter(|_| self.persistent()) else {
+        // Only a persistent field plans lattice steps, so only it has a lattice index.
+        let Some(k) = self.lattice_index else {
             return FoamUpdate {
                 out: &mut self.values,
                 source: None,
@@ -246,13 +247,6 @@ impl FoamField {
             floor: FOAM_FADE_FLOOR * (1.0 - decay),
             threshold: self.threshold,
         }
-    }
-
-    /// Forgets the lattice (after the sea's amplitudes change).
-    pub fn reset(&mut self) {
-        self.lattice_index = None;
-        self.lattice.fill(0.0);
-        self.values.fill(0.0);
     }
 
     /// Mean coverage over the field, in [0, 1].
