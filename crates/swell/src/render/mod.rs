@@ -2,13 +2,17 @@
 //! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`reflection_pass`] draws it
 //! mirrored into its own image for the water to reflect, [`water_pass`] draws the water surface,
 //! [`sky_pass`] fills what is left with the sky, [`overlay_pass`] draws the wireframe and normals
-//! when asked for.
+//! when asked for. Unbounded water (issue 17) is drawn from the camera-following rings of
+//! [`sea_lod`] by the same [`water_pass`], then [`far_field_pass`] carries the sea from the rings'
+//! edge to the horizon before the sky fills the rest.
 
+mod far_field_pass;
 mod mesh_pass;
 // issue 10: the OBJ comparison mode's camera/light files, read in the library so they can be fuzzed.
 mod mesh_view_json;
 mod overlay_pass;
 mod reflection_pass;
+mod sea_lod;
 mod sky_pass;
 mod terrain_pass;
 mod water_pass;
@@ -16,7 +20,7 @@ mod water_pass;
 use glam::Vec3;
 
 use crate::raster::{ClipVertex, Framebuffer};
-use crate::scene::World;
+use crate::scene::{WaterExtent, World};
 use crate::shading::Environment;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
@@ -37,6 +41,8 @@ pub struct Renderer {
     water_scratch: water_pass::Scratch,
     /// The mirrored terrain the water reflects, and its draw buffers.
     reflection_scratch: reflection_pass::Scratch,
+    /// The unbounded sea's camera-following mesh.
+    sea: sea_lod::SeaLod,
 }
 
 impl Renderer {
@@ -91,16 +97,31 @@ impl Renderer {
             }
         }
         if let Some(water) = &world.water {
+            let sea = match water.extent {
+                WaterExtent::Unbounded => self.sea.update(water, &scene.camera, world.time()),
+                WaterExtent::Patch => None,
+            };
+            let surface = match sea {
+                Some(c) => water_pass::Surface::of_clipmap(c),
+                None => water_pass::Surface::of_mesh(&water.mesh),
+            };
+            let filter =
+                sea.map(|c| sea_lod::FootprintFilter::new(&water.slopes, &scene.camera, h, c, water.placement.scale));
             water_pass::draw(
                 fb,
                 &frame,
                 water,
+                &surface,
+                filter.as_ref(),
                 &mut self.clip_vertices,
                 &mut self.face_colors,
                 &mut self.water_scratch,
                 world.terrain.as_ref(),
                 reflection.as_ref(),
             );
+            if sea.is_some() {
+                far_field_pass::draw(fb, &frame, &scene.camera, water, &water.slopes, water.material.shading.lobe());
+            }
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
         sky_pass::draw(fb, scene, frame.env.sun.as_ref());

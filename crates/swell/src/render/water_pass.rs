@@ -9,12 +9,15 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
+use super::sea_lod::FootprintFilter;
 use super::FrameContext;
 use crate::raster::clip::view_outcode;
 use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
 use crate::scene::TerrainBody;
 use crate::scene::WaterBody;
-use crate::shading::{shade_water, FlatBottom, NoBottom, ReflectionMap, Seabed, Shading, SurfaceVarying, WaterLook};
+use crate::shading::{
+    shade_water, shade_water_filtered, FlatBottom, NoBottom, ReflectionMap, Seabed, Shading, SurfaceVarying, WaterLook,
+};
 
 /// Triangles per task of [`mark_visible_vertices`].
 const MARK_TASK: usize = 4096;
@@ -58,19 +61,49 @@ fn mark_visible_vertices(indices: &[u32], outcodes: &[u8], visible: &mut Vec<Ato
     });
 }
 
+/// The triangles the water pass draws: the patch's [`crate::mesh::SurfaceMesh`] or the unbounded
+/// sea's [`crate::mesh::Clipmap`], world positions and normals.
+pub struct Surface<'a> {
+    /// World positions (m).
+    pub positions: &'a [Vec3],
+    /// Unit normals.
+    pub normals: &'a [Vec3],
+    /// Foam per vertex, read only when `has_foam`.
+    pub foam: &'a [f32],
+    /// Whether `foam` holds the model's foam.
+    pub has_foam: bool,
+    /// Triangle list.
+    pub indices: &'a [u32],
+}
+
+impl<'a> Surface<'a> {
+    /// The patch mesh.
+    pub fn of_mesh(m: &'a crate::mesh::SurfaceMesh) -> Self {
+        Self { positions: &m.positions, normals: &m.normals, foam: &m.foam, has_foam: m.has_foam, indices: &m.indices }
+    }
+
+    /// The unbounded sea's rings.
+    pub fn of_clipmap(c: &'a crate::mesh::Clipmap) -> Self {
+        Self { positions: &c.positions, normals: &c.normals, foam: &c.foam, has_foam: c.has_foam, indices: &c.indices }
+    }
+}
+
 /// Draws `water` into `fb`, reusing `clip_vertices`, `face_colors` and `scratch`; `terrain` is
-/// the bottom where the material sets none, `reflection` the terrain the surface mirrors.
+/// the bottom where the material sets none, `reflection` the terrain the surface mirrors;
+/// `filter` (the unbounded sea's) adds, per pixel, the slope variance the pixel cannot resolve.
+#[allow(clippy::too_many_arguments)]
 pub fn draw(
     fb: &mut Framebuffer,
     frame: &FrameContext,
     water: &WaterBody,
+    mesh: &Surface,
+    filter: Option<&FootprintFilter>,
     clip_vertices: &mut Vec<ClipVertex<Vec3>>,
     face_colors: &mut Vec<Vec3>,
     scratch: &mut Scratch,
     terrain: Option<&TerrainBody>,
     reflection: Option<&ReflectionMap>,
 ) {
-    let mesh = &water.mesh;
     let material = &water.material;
     let env = &frame.env;
     let clip_from_world = frame.clip_from_world;
@@ -101,7 +134,7 @@ pub fn draw(
                 *c = shade_water(env, &look, lobe, (a + b + d) / 3.0, n, f);
             });
             let faces = &*face_colors;
-            draw_with(&mut scratch.draw_plain, fb, &scratch.plain, &mesh.indices, Cull::None, &|f| {
+            draw_with(&mut scratch.draw_plain, fb, &scratch.plain, mesh.indices, Cull::None, &|f| {
                 faces[f.primitive as usize]
             });
         }
@@ -116,7 +149,7 @@ pub fn draw(
                 *oc = view_outcode(position);
                 *cv = ClipVertex { position, varying: Vec3::ZERO };
             });
-            mark_visible_vertices(&mesh.indices, &scratch.outcodes, &mut scratch.visible);
+            mark_visible_vertices(mesh.indices, &scratch.outcodes, &mut scratch.visible);
             let visible = &scratch.visible;
             // Tasks of a fixed size: the lit vertices come in runs (the rows in view).
             clip_vertices.par_iter_mut().enumerate().with_max_len(SHADE_TASK).for_each(|(i, cv)| {
@@ -124,7 +157,7 @@ pub fn draw(
                     cv.varying = shade_water(env, &look, lobe, mesh.positions[i], mesh.normals[i], foam(i));
                 }
             });
-            draw_with(&mut scratch.draw_colored, fb, clip_vertices, &mesh.indices, Cull::None, &|f| f.varying);
+            draw_with(&mut scratch.draw_colored, fb, clip_vertices, mesh.indices, Cull::None, &|f| f.varying);
         }
         Shading::Phong | Shading::BlinnPhong => {
             scratch.surface.resize(mesh.positions.len(), ClipVertex::default());
@@ -133,9 +166,16 @@ pub fn draw(
                 *cv =
                     ClipVertex { position: clip(p), varying: SurfaceVarying { position: p, normal: n, foam: foam(i) } };
             });
-            draw_with(&mut scratch.draw_surface, fb, &scratch.surface, &mesh.indices, Cull::None, &|f| {
+            draw_with(&mut scratch.draw_surface, fb, &scratch.surface, mesh.indices, Cull::None, &|f| {
                 let v = &f.varying;
-                shade_water(env, &look, lobe, v.position, v.normal.normalize_or(Vec3::Y), v.foam)
+                let n = v.normal.normalize_or(Vec3::Y);
+                match filter {
+                    Some(filter) => {
+                        let unresolved = filter.variance(v.position, n);
+                        shade_water_filtered(env, &look, lobe, v.position, n, v.foam, unresolved)
+                    }
+                    None => shade_water(env, &look, lobe, v.position, n, v.foam),
+                }
             });
         }
     }

@@ -11,6 +11,7 @@ mod sea_stats;
 mod sky;
 mod terrain_body;
 mod terrain_spec;
+mod water_extent;
 mod water_material;
 mod water_placement;
 mod water_query;
@@ -28,6 +29,7 @@ pub use terrain_body::TerrainBody;
 pub use terrain_spec::{
     HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,
 };
+pub use water_extent::{LodSettings, WaterExtent, LOD_RING_CELLS, LOD_SPACING_M, MAX_LOD_LEVELS};
 pub use water_material::MAX_ABSORPTION;
 pub use water_placement::WaterPlacement;
 pub use water_query::{Water, NORMAL_STEP_M};

@@ -4,7 +4,10 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{fresnel_dielectric, lambert, specular, Environment, Lobe, ReflectionMap, Texture};
+use super::{
+    fresnel_dielectric, lambert, mean_fresnel, specular, spread_normals, widened_lobe, Environment, Lobe,
+    ReflectionMap, Texture,
+};
 use crate::scene::WaterMaterial;
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
@@ -114,20 +117,54 @@ const SEABED_ITERATIONS: usize = 4;
 /// refraction and absorption down to it. A reflected ray below the horizon would hit the water
 /// again; it is bent back to the horizon, whose colour is what such a ray would eventually see.
 pub fn shade_water(env: &Environment, look: &WaterLook, lobe: Lobe, p: Vec3, n: Vec3, foam: f32) -> Vec3 {
+    shade_water_filtered(env, look, lobe, p, n, foam, 0.0)
+}
+
+/// [`shade_water`] with the slope variance `unresolved` (both axes summed, >= 0) of the waves
+/// too short for the mesh or the pixel that sampled `n`, shaded statistically
+/// (`shading/slope_variance.rs`, Bruneton et al. 2010): the Fresnel factor is their mean over the
+/// slopes, the reflected sky is averaged over normals spread by the slopes' deviation and the
+/// specular lobe is widened with its energy kept. `unresolved = 0` is exactly [`shade_water`].
+pub fn shade_water_filtered(
+    env: &Environment,
+    look: &WaterLook,
+    lobe: Lobe,
+    p: Vec3,
+    n: Vec3,
+    foam: f32,
+    unresolved: f32,
+) -> Vec3 {
     let m = look.material;
     let to_eye = (env.eye - p).normalize_or(Vec3::Y);
     // Seen from behind (a fold, or the far side of a steep crest), shade the side facing the eye.
     let n = if n.dot(to_eye) < 0.0 { -n } else { n };
     let cos_i = n.dot(to_eye);
-    let f = fresnel_dielectric(cos_i, m.refractive_index);
-    let mut reflected = (2.0 * cos_i * n - to_eye).normalize_or(Vec3::Y);
+    let filtered = unresolved > 0.0;
+    let f = if filtered {
+        let r0 = fresnel_dielectric(1.0, m.refractive_index);
+        mean_fresnel(cos_i, unresolved, r0)
+    } else {
+        fresnel_dielectric(cos_i, m.refractive_index)
+    };
+    let reflected = (2.0 * cos_i * n - to_eye).normalize_or(Vec3::Y);
     let terrain = match look.reflection {
         Some(map) if reflected.y > 0.0 => map.sample(p, reflected),
         _ => None,
     };
+    let sky_along = |mut r: Vec3| {
+        r.y = r.y.max(0.0);
+        env.sky_radiance(r.normalize_or(Vec3::Y))
+    };
     let sky = terrain.unwrap_or_else(|| {
-        reflected.y = reflected.y.max(0.0);
-        env.sky_radiance(reflected.normalize_or(Vec3::Y))
+        if filtered {
+            // The sky the slopes' spread of normals reflects, averaged.
+            spread_normals(n, unresolved).iter().fold(Vec3::ZERO, |acc, &s| {
+                let c = s.dot(to_eye).max(0.0);
+                acc + 0.25 * sky_along(2.0 * c * s - to_eye)
+            })
+        } else {
+            sky_along(reflected)
+        }
     });
 
     let body = look.body_color(p.x, p.z) * lambert(env, p, n);
@@ -142,8 +179,14 @@ pub fn shade_water(env: &Environment, look: &WaterLook, lobe: Lobe, p: Vec3, n: 
         },
         _ => body,
     };
-    let glitter =
-        if m.specular > 0.0 { m.specular * specular(env, p, n, to_eye, lobe, m.shininess) } else { Vec3::ZERO };
+    let glitter = if m.specular <= 0.0 {
+        Vec3::ZERO
+    } else if filtered {
+        let (shininess, weight) = widened_lobe(m.shininess, unresolved);
+        (m.specular * weight) * specular(env, p, n, to_eye, lobe, shininess)
+    } else {
+        m.specular * specular(env, p, n, to_eye, lobe, m.shininess)
+    };
     let water = sky * f + transmitted * (1.0 - f) + glitter;
     if foam > 0.0 {
         let foam_light = m.foam_color * lambert(env, p, Vec3::Y);
