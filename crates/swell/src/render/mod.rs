@@ -1,4 +1,5 @@
-//! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer:
+//! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer, every
+//! lit one through the one shaded-draw path ([`shaded_draw`]):
 //! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`reflection_pass`] draws it
 //! mirrored into its own image for the water to reflect, [`water_pass`] draws the water surface,
 //! [`sky_pass`] fills what is left with the sky, [`overlay_pass`] draws the wireframe and normals
@@ -9,14 +10,13 @@ mod mesh_pass;
 mod mesh_view_json;
 mod overlay_pass;
 mod reflection_pass;
+mod shaded_draw;
 mod sky_pass;
 mod terrain_pass;
 mod water_pass;
 
-use glam::Vec3;
-
-use crate::raster::{ClipVertex, Framebuffer};
-use crate::scene::World;
+use crate::raster::Framebuffer;
+use crate::scene::{Camera, World};
 use crate::shading::Environment;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
@@ -29,13 +29,11 @@ pub struct Renderer {
     framebuffer: Option<Framebuffer>,
     /// The supersampled frame, when `[render] supersample` > 1.
     supersampled: Option<Framebuffer>,
-    /// Vertex-stage output, reused by every pass.
-    clip_vertices: Vec<ClipVertex<Vec3>>,
-    /// Per-triangle colours for flat shading, reused by every pass.
-    face_colors: Vec<Vec3>,
-    /// The water pass's own vertex buffers (per-pixel and flat shading).
-    water_scratch: water_pass::Scratch,
-    /// The mirrored terrain the water reflects, and its draw buffers.
+    /// The terrain's vertex buffers and colours, which its reflection draws again.
+    terrain_draw: shaded_draw::ShadedDraw,
+    /// The water's vertex buffers.
+    water_draw: shaded_draw::ShadedDraw,
+    /// The mirrored terrain the water reflects.
     reflection_scratch: reflection_pass::Scratch,
 }
 
@@ -72,35 +70,20 @@ impl Renderer {
                 time: world.time(),
             },
             clip_from_world: scene.camera.clip_from_world(width as f32 / height as f32),
+            camera: &scene.camera,
+            size: (w, h),
         };
         sky_pass::clear_depth(fb);
         let mut reflection = None;
         if let Some(terrain) = &world.terrain {
-            terrain_pass::draw(fb, &frame, terrain, &mut self.clip_vertices, &mut self.face_colors);
+            terrain_pass::draw(fb, &frame, terrain, &mut self.terrain_draw);
             if world.water.is_some() {
-                reflection = reflection_pass::draw(
-                    &mut self.reflection_scratch,
-                    w,
-                    h,
-                    &frame,
-                    &scene.camera,
-                    terrain,
-                    &mut self.clip_vertices,
-                    &self.face_colors,
-                );
+                reflection =
+                    reflection_pass::draw(&mut self.reflection_scratch, &frame, terrain, &mut self.terrain_draw);
             }
         }
         if let Some(water) = &world.water {
-            water_pass::draw(
-                fb,
-                &frame,
-                water,
-                &mut self.clip_vertices,
-                &mut self.face_colors,
-                &mut self.water_scratch,
-                world.terrain.as_ref(),
-                reflection.as_ref(),
-            );
+            water_pass::draw(fb, &frame, water, &mut self.water_draw, world.terrain.as_ref(), reflection.as_ref());
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
         sky_pass::draw(fb, scene, frame.env.sun.as_ref());
@@ -122,4 +105,8 @@ pub(crate) struct FrameContext<'a> {
     pub env: Environment<'a>,
     /// World to clip transform of the frame's camera and aspect ratio.
     pub clip_from_world: glam::Mat4,
+    /// The frame's camera.
+    pub camera: &'a Camera,
+    /// Pixels drawn, width x height (the supersampled size when supersampling).
+    pub size: (u32, u32),
 }
