@@ -14,8 +14,8 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use swell::mesh::TriangleMesh;
 use swell::render::{MeshLight, MeshRenderer, Renderer};
+use swell::scene::Shading;
 use swell::scene::{preset, Camera, World};
-use swell::shading::Shading;
 
 /// A deterministic bumpy 513 x 513 grid over 100 m x 100 m: a sum of sines standing in for a
 /// diamond-square terrain (which lives in another module), with the same triangle count.

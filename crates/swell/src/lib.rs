@@ -49,6 +49,7 @@
 
 #![warn(missing_docs)]
 
+pub mod closed_set;
 pub mod error;
 pub mod export;
 pub mod limits;

@@ -2,8 +2,8 @@
 //! 1, 2 and 3 threads, and shading models differ where they should.
 
 use swell::render::Renderer;
+use swell::scene::Shading;
 use swell::scene::{preset, World};
-use swell::shading::Shading;
 
 fn render(shading: Shading, threads: usize) -> Vec<[u32; 3]> {
     let mut scene = preset("sea").unwrap();

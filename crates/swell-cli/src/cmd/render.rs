@@ -8,8 +8,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use swell::export::{write_gif, write_png, FrameRange, MAX_FPS, MAX_GIF_FPS};
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
+use swell::scene::Shading;
 use swell::scene::{Camera, World, MAX_IMAGE_SIDE};
-use swell::shading::Shading;
 use swell::{Error, Result};
 
 use super::{load_scene, thread_pool};
@@ -55,7 +55,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
         scene.render.height = h;
     }
     if let Some(name) = &a.shading {
-        let shading = Shading::parse(name, "--shading")?;
+        let shading = Shading::parse("--shading", name)?;
         if let Some(w) = &mut scene.water {
             w.material.shading = shading;
         }
@@ -205,7 +205,7 @@ fn run_mesh(a: &RenderArgs) -> Result<()> {
         return Err(Error::out_of_range("--repeat", repeat, format!("[1, {MAX_FRAMES}]")));
     }
     let shading = match &a.shading {
-        Some(name) => Shading::parse(name, "--shading")?,
+        Some(name) => Shading::parse("--shading", name)?,
         None => Shading::Flat,
     };
     let (camera, width, height) = read_camera(camera_path)?;

@@ -7,21 +7,9 @@
 
 use eframe::egui::Ui;
 use swell::spectrum::Spreading;
-use swell::water::{BlenderOcean, FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE};
+use swell::water::{BlenderOcean, FftOceanParams, SwellParams, FFT_GRID_RANGE};
 
 use super::{fields, keys, table_fields};
-
-/// The spectra offered, in menu order, with their scene-file names.
-pub const SPECTRA: &[(SpectrumKind, &str)] = &[
-    (SpectrumKind::Phillips, "phillips"),
-    (SpectrumKind::PiersonMoskowitz, "pierson-moskowitz"),
-    (SpectrumKind::Jonswap, "jonswap"),
-    (SpectrumKind::Tma, "tma"),
-];
-
-/// The spreading functions offered, with their scene-file names.
-pub const SPREADINGS: &[(Spreading, &str)] =
-    &[(Spreading::Cos2, "cos2"), (Spreading::Mitsuyasu, "mitsuyasu"), (Spreading::DonelanBanner, "donelan-banner")];
 
 /// Depth (m) the panel starts from when `depth` is switched on; TMA's shallow-water effects show
 /// below about a quarter of the peak wavelength.
@@ -41,7 +29,7 @@ pub fn show(ui: &mut Ui, p: &mut FftOceanParams) -> bool {
     let mut changed = false;
     ui.label("FFT ocean (paper 003 §1.2.2, after Tessendorf 2001)");
     fields::grid("fft-ocean").show(ui, |ui| {
-        changed |= fields::choice(ui, "spectrum", &mut p.spectrum, SPECTRA);
+        changed |= fields::member(ui, "spectrum", &mut p.spectrum);
         changed |= fields::number(ui, "wind speed U10", &mut p.wind_speed, 0.05, " m/s");
         changed |= fields::number(ui, "wind direction", &mut p.wind_direction_deg, 0.5, " deg");
         changed |= fields::number(ui, "fetch", &mut p.fetch_km, 1.0, " km");
@@ -49,7 +37,13 @@ pub fn show(ui: &mut Ui, p: &mut FftOceanParams) -> bool {
         changed |= fields::number(ui, "peak enhancement gamma", &mut p.gamma, 0.01, "");
         changed |= fields::number(ui, "small-wave cutoff", &mut p.small_wave_cutoff, 0.001, " m");
         changed |= fields::number(ui, "choppiness", &mut p.choppiness, 0.01, "");
-        changed |= fields::choice(ui, "spreading", &mut p.spreading, SPREADINGS);
+        // The named functions only: the others are set up by `[water.blender]`, never chosen.
+        if let Spreading::Named(mut f) = p.spreading {
+            if fields::member(ui, "spreading", &mut f) {
+                p.spreading = f.into();
+                changed = true;
+            }
+        }
         let sides: Vec<(u32, String)> = grid_sides().into_iter().map(|n| (n, format!("{n} x {n}"))).collect();
         let options: Vec<(u32, &str)> = sides.iter().map(|(n, s)| (*n, s.as_str())).collect();
         changed |= fields::choice(ui, "grid", &mut p.grid, &options);
@@ -148,18 +142,12 @@ pub fn set_blender(p: &mut FftOceanParams, on: bool) {
 #[cfg(test)]
 mod tests {
     use swell::scene::{preset, Scene, WaterModelSpec};
+    use swell::spectrum::{SpectrumKind, SpreadingFunction};
 
     use super::*;
 
     #[test]
     fn the_menus_name_what_the_scene_format_reads() {
-        for &(kind, name) in SPECTRA {
-            assert_eq!(toml::Value::try_from(kind).unwrap().as_str(), Some(name));
-        }
-        for &(s, name) in SPREADINGS {
-            assert_eq!(toml::Value::try_from(s).unwrap().as_str(), Some(name));
-        }
-        assert_eq!(SPREADINGS.len(), Spreading::NAMES.len());
         let sides = grid_sides();
         assert_eq!((sides[0], *sides.last().unwrap()), FFT_GRID_RANGE);
         for n in sides {
@@ -176,7 +164,7 @@ mod tests {
         p.spectrum = SpectrumKind::Tma;
         p.loop_period = Some(DEFAULT_LOOP_PERIOD_S);
         p.swell = Some(SwellParams::default());
-        p.spreading = Spreading::DonelanBanner;
+        p.spreading = Spreading::Named(SpreadingFunction::DonelanBanner);
         scene.validate().unwrap();
         assert_eq!(Scene::from_toml(&scene.to_toml(), "t").unwrap(), scene);
         // TMA without a depth is refused with the reason.

@@ -5,6 +5,7 @@
 
 use eframe::egui::{self, DragValue, Ui};
 use glam::{Vec2, Vec3};
+use swell::closed_set::ClosedSet;
 
 /// A labelled number with a unit suffix (`" m"`, `" m/s"`, `""`); returns whether it changed.
 pub fn number(ui: &mut Ui, label: &str, value: &mut f32, speed: f64, suffix: &str) -> bool {
@@ -186,6 +187,17 @@ pub fn choice<T: PartialEq + Copy>(ui: &mut Ui, label: &str, value: &mut T, opti
     });
     ui.end_row();
     changed
+}
+
+/// A labelled choice among every member of a closed set (`swell::closed_set`), by its names; returns
+/// whether it changed. The menu is the set's own list, so a new member appears without an edit here.
+pub fn member<T: ClosedSet>(ui: &mut Ui, label: &str, value: &mut T) -> bool {
+    choice(ui, label, value, &member_options::<T>())
+}
+
+/// The entries of [`member`]'s menu: every member of `T` with its name, in declaration order.
+pub fn member_options<T: ClosedSet>() -> Vec<(T, &'static str)> {
+    T::ALL.iter().map(|&m| (m, m.name())).collect()
 }
 
 /// A labelled check box.

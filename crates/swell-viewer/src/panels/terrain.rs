@@ -10,8 +10,8 @@ use std::path::PathBuf;
 
 use eframe::egui::{self, TextEdit, Ui};
 use swell::math::Transform;
+use swell::scene::TerrainMaterial;
 use swell::scene::{HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, TERRAIN_GENERATORS};
-use swell::shading::{TerrainMaterial, TerrainShading};
 use swell::{Error, Result};
 
 use super::files::{FileMessage, FileRequest};
@@ -53,10 +53,6 @@ impl Default for TerrainForm {
         }
     }
 }
-
-/// The terrain shadings the panel offers, with their scene-file names.
-pub const TERRAIN_SHADINGS: &[(TerrainShading, &str)] =
-    &[(TerrainShading::Flat, "flat"), (TerrainShading::Gouraud, "gouraud")];
 
 /// The generator "Back to a generator" switches a loaded heightmap to (the paper 001 classic).
 pub const DEFAULT_GENERATOR: &str = "diamond-square";
@@ -151,7 +147,7 @@ pub fn has_seed(g: &TerrainGenerator) -> bool {
 pub fn show_material(ui: &mut Ui, m: &mut TerrainMaterial) -> bool {
     let mut changed = false;
     fields::grid("terrain-material").show(ui, |ui| {
-        changed |= fields::choice(ui, "shading", &mut m.shading, TERRAIN_SHADINGS);
+        changed |= fields::member(ui, "shading", &mut m.shading);
         changed |= fields::color(ui, "sand", &mut m.sand);
         changed |= fields::color(ui, "grass", &mut m.grass);
         changed |= fields::color(ui, "rock", &mut m.rock);

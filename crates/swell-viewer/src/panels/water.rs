@@ -7,15 +7,11 @@
 
 use eframe::egui::{self, Ui};
 use swell::scene::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
-use swell::shading::Shading;
 use swell::water::{GerstnerWave, SineWave};
 use swell::{Error, Result};
 
 use super::{airy, fft_ocean, fields, gerstner, noise, radial, river, sines, springs, steep_sines, tessendorf};
 use super::{keys, water_transform, wave_set, PanelState};
-
-/// Shading models the panel offers, in menu order.
-pub const SHADINGS: &[Shading] = &[Shading::Flat, Shading::Gouraud, Shading::Phong, Shading::BlinnPhong];
 
 /// The `water.model` name of a model spec, as written in scene files.
 pub fn model_name(model: &WaterModelSpec) -> String {
@@ -23,14 +19,6 @@ pub fn model_name(model: &WaterModelSpec) -> String {
     match toml::Table::try_from(model).ok().and_then(|t| t.get("model").cloned()) {
         Some(toml::Value::String(s)) => s,
         _ => "?".into(),
-    }
-}
-
-/// A scene-file name for a shading model (`"gouraud"`).
-pub fn shading_name(s: Shading) -> String {
-    match toml::Value::try_from(s) {
-        Ok(toml::Value::String(name)) => name,
-        _ => format!("{s:?}"),
     }
 }
 
@@ -108,13 +96,7 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
     let mut changed = false;
     fields::grid("water-material").show(ui, |ui| {
         changed |= fields::color(ui, "colour", &mut m.color);
-        ui.label("shading");
-        egui::ComboBox::from_id_salt("water-shading").selected_text(shading_name(m.shading)).show_ui(ui, |ui| {
-            for &s in SHADINGS {
-                changed |= ui.selectable_value(&mut m.shading, s, shading_name(s)).changed();
-            }
-        });
-        ui.end_row();
+        changed |= fields::member(ui, "shading", &mut m.shading);
         changed |= fields::number(ui, "refractive index", &mut m.refractive_index, 0.001, "");
         changed |= fields::number(ui, "specular", &mut m.specular, 0.01, "");
         changed |= fields::number(ui, "shininess", &mut m.shininess, 1.0, "");
@@ -232,14 +214,14 @@ mod tests {
     use swell::scene::preset;
 
     use super::*;
+    use swell::scene::Shading;
 
     #[test]
     fn names_come_from_the_scene_format() {
         let sea = preset("sea").unwrap().water.unwrap();
         assert_eq!(model_name(&sea.model), "gerstner");
-        assert_eq!(shading_name(Shading::Gouraud), "gouraud");
-        for &s in SHADINGS {
-            let text = format!("model = 'sines'\n[material]\nshading = '{}'\n", shading_name(s));
+        for (s, name) in fields::member_options::<Shading>() {
+            let text = format!("model = 'sines'\n[material]\nshading = '{name}'\n");
             let w = WaterSpec::from_table(toml::from_str(&text).unwrap(), "t").unwrap();
             assert_eq!(w.material.shading, s);
         }

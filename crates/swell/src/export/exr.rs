@@ -20,42 +20,28 @@ use ::exr::block::writer::ChunksWriter;
 use ::exr::meta::Headers;
 use ::exr::prelude::{Blocks, Compression, Encoding, Image, LineOrder, SpecificChannels, WritableImage};
 use glam::Vec3;
-use serde::{Deserialize, Serialize};
 
 use super::write_atomically;
 use crate::error::{Error, Result};
 
-/// How EXR pixel data is compressed; every choice is lossless for `f32`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ExrCompression {
-    /// Raw samples: the fastest to write and read, the largest files (12 bytes per RGB pixel).
-    #[default]
-    None,
-    /// Run-length encoding: cheap, helps only on flat areas.
-    Rle,
-    /// Deflate over blocks of 16 lines: several times slower to write; float wave fields are
-    /// nearly incompressible (a few percent smaller), smooth fields gain more.
-    Zip,
-    /// Wavelet (PIZ): slower still, slightly smaller than ZIP on wave fields.
-    Piz,
+crate::closed_set! {
+    /// How EXR pixel data is compressed; every choice is lossless for `f32`.
+    #[derive(Default)]
+    pub enum ExrCompression: "an EXR compression" {
+        /// Raw samples: the fastest to write and read, the largest files (12 bytes per RGB pixel).
+        #[default]
+        None = "none",
+        /// Run-length encoding: cheap, helps only on flat areas.
+        Rle = "rle",
+        /// Deflate over blocks of 16 lines: several times slower to write; float wave fields are
+        /// nearly incompressible (a few percent smaller), smooth fields gain more.
+        Zip = "zip",
+        /// Wavelet (PIZ): slower still, slightly smaller than ZIP on wave fields.
+        Piz = "piz",
+    }
 }
 
 impl ExrCompression {
-    /// Every name, as accepted by [`ExrCompression::parse`].
-    pub const NAMES: &'static [&'static str] = &["none", "rle", "zip", "piz"];
-
-    /// Parses a name from [`ExrCompression::NAMES`]; `key` names the option in the error.
-    pub fn parse(key: &str, s: &str) -> Result<Self> {
-        Ok(match s {
-            "none" => Self::None,
-            "rle" => Self::Rle,
-            "zip" => Self::Zip,
-            "piz" => Self::Piz,
-            _ => return Err(Error::invalid(key, format!("`{s}` is not one of {}", Self::NAMES.join(", ")))),
-        })
-    }
-
     fn encoding(self) -> Encoding {
         let compression = match self {
             Self::None => Compression::Uncompressed,

@@ -22,44 +22,23 @@
 //! [−1, 1] (EXR) or `(n + 1) / 2` of full scale (PNG) in every space.
 
 use glam::Vec3;
-use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
-
-/// The space of a baked normal map; see the module documentation for the exact frames.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum NormalSpace {
-    /// The unit normal in swell's world axes (x, y, z), +Y up. The default.
-    #[default]
-    World,
-    /// Tangent space of the flat patch, OpenGL convention: (n.x, −n.z, n.y).
-    TangentGl,
-    /// Tangent space of the flat patch, DirectX convention: (n.x, n.z, n.y).
-    TangentDx,
+crate::closed_set! {
+    /// The space of a baked normal map; see the module documentation for the exact frames. The
+    /// names are those of the command line and `bake.json`.
+    #[derive(Default)]
+    pub enum NormalSpace: "a normal space" {
+        /// The unit normal in swell's world axes (x, y, z), +Y up. The default.
+        #[default]
+        World = "world",
+        /// Tangent space of the flat patch, OpenGL convention: (n.x, −n.z, n.y).
+        TangentGl = "tangent-gl",
+        /// Tangent space of the flat patch, DirectX convention: (n.x, n.z, n.y).
+        TangentDx = "tangent-dx",
+    }
 }
 
 impl NormalSpace {
-    /// Every space, in the order the CLI lists them.
-    pub const ALL: [NormalSpace; 3] = [NormalSpace::World, NormalSpace::TangentGl, NormalSpace::TangentDx];
-
-    /// The name used on the command line and in `bake.json`: `world`, `tangent-gl`, `tangent-dx`.
-    pub fn name(self) -> &'static str {
-        match self {
-            NormalSpace::World => "world",
-            NormalSpace::TangentGl => "tangent-gl",
-            NormalSpace::TangentDx => "tangent-dx",
-        }
-    }
-
-    /// Parses a name of [`NormalSpace::name`]; `key` names the option in errors.
-    pub fn parse(key: &str, s: &str) -> Result<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == s.trim()).ok_or_else(|| {
-            let names: Vec<&str> = Self::ALL.iter().map(|m| m.name()).collect();
-            Error::invalid(key, format!("`{s}` is not a normal space; valid: {}", names.join(", ")))
-        })
-    }
-
     /// The world unit normal `n` expressed in this space (a permutation with one sign: exact).
     #[inline]
     pub fn from_world(self, n: Vec3) -> Vec3 {
@@ -92,7 +71,7 @@ mod tests {
 
     #[test]
     fn names_round_trip_and_bad_names_list_the_valid_ones() {
-        for m in NormalSpace::ALL {
+        for &m in NormalSpace::ALL {
             assert_eq!(NormalSpace::parse("--normal-space", m.name()).unwrap(), m);
             let json = serde_json::to_string(&m).unwrap();
             assert_eq!(json, format!("\"{}\"", m.name()));

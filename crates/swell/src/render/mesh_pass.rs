@@ -3,13 +3,12 @@
 //! compared with an OpenGL renderer image for image and time for time.
 
 use glam::{Vec3, Vec4};
-use rayon::prelude::*;
 
+use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use crate::error::{check_finite_vec, check_non_negative, Error, Result};
 use crate::mesh::TriangleMesh;
-use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
-use crate::scene::Camera;
-use crate::shading::{Shading, SurfaceVarying};
+use crate::raster::Framebuffer;
+use crate::scene::{Camera, Shading};
 
 /// A directional light and a diffuse material: `base * (ambient + color * max(0, N.L))`,
 /// `L = -dir` (colours linear).
@@ -59,9 +58,18 @@ impl MeshLight {
         }
         Ok(())
     }
+}
 
-    fn shade(&self, to_light: Vec3, n: Vec3) -> Vec3 {
-        self.base_color * (self.ambient + self.color * n.dot(to_light).max(0.0))
+/// [`MeshLight`] as a surface shader, with the unit vector towards the light worked out once.
+struct MeshLightShader<'a> {
+    light: &'a MeshLight,
+    to_light: Vec3,
+}
+
+impl SurfaceShader for MeshLightShader<'_> {
+    fn shade(&self, _position: Vec3, n: Vec3, _foam: f32) -> Vec3 {
+        let light = self.light;
+        light.base_color * (light.ambient + light.color * n.dot(self.to_light).max(0.0))
     }
 }
 
@@ -69,13 +77,7 @@ impl MeshLight {
 #[derive(Default)]
 pub struct MeshRenderer {
     framebuffer: Option<Framebuffer>,
-    plain: Vec<ClipVertex<()>>,
-    colored: Vec<ClipVertex<Vec3>>,
-    surface: Vec<ClipVertex<SurfaceVarying>>,
-    faces: Vec<Vec3>,
-    draw_plain: DrawScratch<()>,
-    draw_colored: DrawScratch<Vec3>,
-    draw_surface: DrawScratch<SurfaceVarying>,
+    draw: ShadedDraw,
 }
 
 impl MeshRenderer {
@@ -106,44 +108,14 @@ impl MeshRenderer {
         let background = light.background;
         fb.clear_with(|_, _| background);
         let clip_from_world = camera.clip_from_world(width as f32 / height as f32);
-        let clip = |p: Vec3| clip_from_world * Vec4::from((p, 1.0));
-        let to_light = -light.dir.normalize();
-        let n_vertices = mesh.positions.len();
-        match shading {
-            Shading::Flat => {
-                self.plain.resize(n_vertices, ClipVertex::default());
-                self.plain.par_iter_mut().zip(mesh.positions.par_iter()).for_each(|(cv, &p)| cv.position = clip(p));
-                let positions = &mesh.positions;
-                self.faces.resize(mesh.indices.len() / 3, Vec3::ZERO);
-                self.faces.par_iter_mut().zip(mesh.indices.par_chunks_exact(3)).for_each(|(c, t)| {
-                    let (a, b, d) = (positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]);
-                    *c = light.shade(to_light, (b - a).cross(d - a).normalize_or_zero());
-                });
-                let faces = &self.faces;
-                draw_with(&mut self.draw_plain, fb, &self.plain, &mesh.indices, Cull::None, &|f| {
-                    faces[f.primitive as usize]
-                });
-            }
-            Shading::Gouraud => {
-                self.colored.resize(n_vertices, ClipVertex::default());
-                self.colored.par_iter_mut().enumerate().for_each(|(i, cv)| {
-                    let (p, n) = (mesh.positions[i], mesh.normals[i]);
-                    *cv = ClipVertex { position: clip(p), varying: light.shade(to_light, n) };
-                });
-                draw_with(&mut self.draw_colored, fb, &self.colored, &mesh.indices, Cull::None, &|f| f.varying);
-            }
-            Shading::Phong | Shading::BlinnPhong => {
-                self.surface.resize(n_vertices, ClipVertex::default());
-                self.surface.par_iter_mut().enumerate().for_each(|(i, cv)| {
-                    let (p, n) = (mesh.positions[i], mesh.normals[i]);
-                    *cv =
-                        ClipVertex { position: clip(p), varying: SurfaceVarying { position: p, normal: n, foam: 0.0 } };
-                });
-                draw_with(&mut self.draw_surface, fb, &self.surface, &mesh.indices, Cull::None, &|f| {
-                    light.shade(to_light, f.varying.normal.normalize_or_zero())
-                });
-            }
-        }
+        let shader = MeshLightShader { light, to_light: -light.dir.normalize() };
+        self.draw.draw(
+            fb,
+            ShadedMesh { positions: &mesh.positions, normals: &mesh.normals, foam: None, indices: &mesh.indices },
+            &|p| clip_from_world * Vec4::from((p, 1.0)),
+            shading,
+            &shader,
+        );
         fb
     }
 }

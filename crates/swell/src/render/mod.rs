@@ -1,4 +1,5 @@
-//! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer:
+//! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer, every
+//! lit one through the one shaded-draw path ([`shaded_draw`]):
 //! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`reflection_pass`] draws it
 //! mirrored into its own image for the water to reflect, [`water_pass`] draws the water surface,
 //! [`sky_pass`] fills what is left with the sky, [`overlay_pass`] draws the wireframe and normals
@@ -13,14 +14,13 @@ mod mesh_view_json;
 mod overlay_pass;
 mod reflection_pass;
 mod sea_lod;
+mod shaded_draw;
 mod sky_pass;
 mod terrain_pass;
 mod water_pass;
 
-use glam::Vec3;
-
-use crate::raster::{ClipVertex, Framebuffer};
-use crate::scene::{WaterExtent, World};
+use crate::raster::Framebuffer;
+use crate::scene::{Camera, WaterExtent, World};
 use crate::shading::Environment;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
@@ -33,13 +33,11 @@ pub struct Renderer {
     framebuffer: Option<Framebuffer>,
     /// The supersampled frame, when `[render] supersample` > 1.
     supersampled: Option<Framebuffer>,
-    /// Vertex-stage output, reused by every pass.
-    clip_vertices: Vec<ClipVertex<Vec3>>,
-    /// Per-triangle colours for flat shading, reused by every pass.
-    face_colors: Vec<Vec3>,
-    /// The water pass's own vertex buffers (per-pixel and flat shading).
-    water_scratch: water_pass::Scratch,
-    /// The mirrored terrain the water reflects, and its draw buffers.
+    /// The terrain's vertex buffers and colours, which its reflection draws again.
+    terrain_draw: shaded_draw::ShadedDraw,
+    /// The water's vertex buffers.
+    water_draw: shaded_draw::ShadedDraw,
+    /// The mirrored terrain the water reflects.
     reflection_scratch: reflection_pass::Scratch,
     /// The unbounded sea's camera-following mesh.
     sea: sea_lod::SeaLod,
@@ -78,22 +76,16 @@ impl Renderer {
                 time: world.time(),
             },
             clip_from_world: scene.camera.clip_from_world(width as f32 / height as f32),
+            camera: &scene.camera,
+            size: (w, h),
         };
         sky_pass::clear_depth(fb);
         let mut reflection = None;
         if let Some(terrain) = &world.terrain {
-            terrain_pass::draw(fb, &frame, terrain, &mut self.clip_vertices, &mut self.face_colors);
+            terrain_pass::draw(fb, &frame, terrain, &mut self.terrain_draw);
             if world.water.is_some() {
-                reflection = reflection_pass::draw(
-                    &mut self.reflection_scratch,
-                    w,
-                    h,
-                    &frame,
-                    &scene.camera,
-                    terrain,
-                    &mut self.clip_vertices,
-                    &self.face_colors,
-                );
+                reflection =
+                    reflection_pass::draw(&mut self.reflection_scratch, &frame, terrain, &mut self.terrain_draw);
             }
         }
         if let Some(water) = &world.water {
@@ -101,9 +93,19 @@ impl Renderer {
                 WaterExtent::Unbounded => self.sea.update(water, &scene.camera, world.time()),
                 WaterExtent::Patch => None,
             };
-            let surface = match sea {
-                Some(c) => water_pass::Surface::of_clipmap(c),
-                None => water_pass::Surface::of_mesh(&water.mesh),
+            let mesh = match sea {
+                Some(c) => shaded_draw::ShadedMesh {
+                    positions: &c.positions,
+                    normals: &c.normals,
+                    foam: c.has_foam.then_some(&c.foam[..]),
+                    indices: &c.indices,
+                },
+                None => shaded_draw::ShadedMesh {
+                    positions: &water.mesh.positions,
+                    normals: &water.mesh.normals,
+                    foam: water.mesh.has_foam.then_some(&water.mesh.foam[..]),
+                    indices: &water.mesh.indices,
+                },
             };
             let filter =
                 sea.map(|c| sea_lod::FootprintFilter::new(&water.slopes, &scene.camera, h, c, water.placement.scale));
@@ -111,16 +113,15 @@ impl Renderer {
                 fb,
                 &frame,
                 water,
-                &surface,
+                mesh,
                 filter.as_ref(),
-                &mut self.clip_vertices,
-                &mut self.face_colors,
-                &mut self.water_scratch,
+                &mut self.water_draw,
                 world.terrain.as_ref(),
                 reflection.as_ref(),
             );
             if sea.is_some() {
-                far_field_pass::draw(fb, &frame, &scene.camera, water, &water.slopes, water.material.shading.lobe());
+                let lobe = crate::shading::Lobe::of(water.material.shading);
+                far_field_pass::draw(fb, &frame, &scene.camera, water, &water.slopes, lobe);
             }
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
@@ -143,4 +144,8 @@ pub(crate) struct FrameContext<'a> {
     pub env: Environment<'a>,
     /// World to clip transform of the frame's camera and aspect ratio.
     pub clip_from_world: glam::Mat4,
+    /// The frame's camera.
+    pub camera: &'a Camera,
+    /// Pixels drawn, width x height (the supersampled size when supersampling).
+    pub size: (u32, u32),
 }

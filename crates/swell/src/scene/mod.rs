@@ -8,9 +8,12 @@ mod render_settings;
 #[allow(clippy::module_inception)]
 mod scene;
 mod sea_stats;
+mod shading_model;
 mod sky;
 mod terrain_body;
+mod terrain_material;
 mod terrain_spec;
+mod texture;
 mod water_extent;
 mod water_material;
 mod water_placement;
@@ -24,11 +27,14 @@ pub use presets::{preset, Preset, PRESETS};
 pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_THREADS};
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
 pub use sea_stats::{sea_stats, SeaStats};
+pub use shading_model::Shading;
 pub use sky::{Sky, SunDisc};
 pub use terrain_body::TerrainBody;
+pub use terrain_material::TerrainMaterial;
 pub use terrain_spec::{
     HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,
 };
+pub use texture::{Texture, MAX_TEXTURE_SIDE};
 pub use water_extent::{LodSettings, WaterExtent, LOD_RING_CELLS, LOD_SPACING_M, MAX_LOD_LEVELS};
 pub use water_material::MAX_ABSORPTION;
 pub use water_placement::WaterPlacement;

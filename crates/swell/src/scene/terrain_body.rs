@@ -4,11 +4,11 @@
 use glam::{Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::TerrainMaterial;
 use super::{TerrainSpec, WaterPlacement};
 use crate::error::Result;
 use crate::math::{GridSpec, Transform};
 use crate::mesh::SurfaceMesh;
-use crate::shading::TerrainMaterial;
 use crate::terrain::HeightField;
 
 /// Terrain built from a [`TerrainSpec`]: the model-space field, its placement, the world-space mesh
@@ -259,14 +259,5 @@ mod tests {
             assert_eq!(*d, if inside { 0.2 } else { f32::INFINITY }, "vertex ({x}, {z})");
         }
         assert_eq!(t.median_water_depth(), Some(0.2));
-    }
-}
-
-/// The terrain seen through the water: refraction samples its height and colour under the surface.
-impl crate::shading::Seabed for TerrainBody {
-    fn sample(&self, x: f32, z: f32) -> Option<(f32, glam::Vec3)> {
-        // The albedo uses an upward normal: under water the bands are chosen by height (sand), and
-        // the refracted view is too blurred by absorption for slope-dependent rock to matter.
-        self.ground_height(x, z).map(|y| (y, self.material.albedo(y, glam::Vec3::Y)))
     }
 }

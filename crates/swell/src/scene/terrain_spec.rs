@@ -22,9 +22,9 @@ use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
 use super::water_spec::deserialize_at;
+use super::TerrainMaterial;
 use crate::error::{check_count, check_finite_vec, check_positive, check_range, Error, Result};
 use crate::math::Transform;
-use crate::shading::TerrainMaterial;
 use crate::terrain::{
     channel, check_diamond_square_size, diamond_square, flat, hills, load_heightmap, noise_terrain, random_average,
     slope, ChannelParams, DiamondSquareParams, FlatParams, HeightField, HeightmapOverrides, HillsParams,

@@ -371,7 +371,7 @@ pub(crate) fn deserialize_at<T: DeserializeOwned>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shading::Shading;
+    use crate::scene::Shading;
     use crate::water::DropSchedule;
 
     fn parse(text: &str) -> Result<WaterSpec> {

@@ -1,9 +1,10 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
+use super::Texture;
 use super::{LodSettings, Scene, TerrainBody, WaterExtent, WaterMaterial, WaterPlacement};
 use crate::error::Result;
 use crate::mesh::SurfaceMesh;
-use crate::shading::{Texture, UnresolvedSlopes};
+use crate::shading::UnresolvedSlopes;
 use crate::water::WaveModel;
 
 /// The water of a [`World`]: the model, the mesh it displaces and the material it is drawn with.

@@ -4,6 +4,7 @@
 use glam::Vec3;
 
 use super::{lambert, Environment};
+use crate::scene::Shading;
 
 /// Shape of the specular highlight.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -12,6 +13,17 @@ pub enum Lobe {
     Phong,
     /// `max(0, n.h)^s` with h the unit half vector between light and eye (Blinn 1977).
     BlinnPhong,
+}
+
+impl Lobe {
+    /// The lobe a shading model uses: Phong's for [`Shading::Phong`], Blinn's for the others
+    /// (flat and Gouraud evaluate the Blinn-Phong lobe at their evaluation points).
+    pub fn of(shading: Shading) -> Lobe {
+        match shading {
+            Shading::Phong => Lobe::Phong,
+            _ => Lobe::BlinnPhong,
+        }
+    }
 }
 
 /// Specular radiance at `p` (unit normal `n`, unit `to_eye`) from every light:

@@ -5,10 +5,9 @@
 use glam::{Vec2, Vec3};
 
 use super::{
-    fresnel_dielectric, lambert, mean_fresnel, specular, spread_normals, widened_lobe, Environment, Lobe,
-    ReflectionMap, Texture,
+    fresnel_dielectric, lambert, mean_fresnel, specular, spread_normals, widened_lobe, Environment, Lobe, ReflectionMap,
 };
-use crate::scene::WaterMaterial;
+use crate::scene::{TerrainBody, Texture, WaterMaterial};
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
 ///
@@ -234,6 +233,15 @@ fn bottom_irradiance(env: &Environment, m: &WaterMaterial, depth: f32) -> Vec3 {
         let entering = 1.0 - fresnel_dielectric(cos_l, m.refractive_index);
         acc + inc.radiance * (cos_t * entering) * (-m.absorption * (depth / cos_t)).exp()
     })
+}
+
+/// The scene's terrain is the bottom the water refracts to where the material sets none.
+impl Seabed for TerrainBody {
+    fn sample(&self, x: f32, z: f32) -> Option<(f32, glam::Vec3)> {
+        // The albedo uses an upward normal: under water the bands are chosen by height (sand), and
+        // the refracted view is too blurred by absorption for slope-dependent rock to matter.
+        self.ground_height(x, z).map(|y| (y, self.material.albedo(y, glam::Vec3::Y)))
+    }
 }
 
 #[cfg(test)]

@@ -126,7 +126,7 @@ mod tests {
     fn spreading_keeps_the_variance_of_the_frequency_spectrum() {
         let j = Jonswap::from_wind(10.0, 80e3, 3.3);
         let m0 = frequency_moment(|w| j.density(w), 0, 0.05, (9.81f64 * 4.0).sqrt(), 40_000);
-        for spreading in [Spreading::Cos2, Spreading::Mitsuyasu, Spreading::DonelanBanner] {
+        for spreading in crate::spectrum::SpreadingFunction::ALL.iter().map(|&f| Spreading::from(f)) {
             let s = DirectionalSpectrum {
                 wind_sea: WindSea::Jonswap(j),
                 spreading,

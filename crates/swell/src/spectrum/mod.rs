@@ -26,6 +26,7 @@ mod jonswap;
 mod loop_period;
 mod phillips;
 mod pierson_moskowitz;
+mod spectrum_kind;
 mod spreading;
 mod swell;
 mod tma;
@@ -34,7 +35,8 @@ pub use directional::{DirectionalSpectrum, WindSea};
 pub use jonswap::{Jonswap, JONSWAP_GAMMA, JONSWAP_SIGMA_ABOVE, JONSWAP_SIGMA_BELOW};
 pub use phillips::{Phillips, PHILLIPS_ALPHA};
 pub use pierson_moskowitz::{u19_5_from_u10, PiersonMoskowitz, PM_ALPHA, PM_BETA};
-pub use spreading::Spreading;
+pub use spectrum_kind::SpectrumKind;
+pub use spreading::{Spreading, SpreadingFunction};
 pub use swell::Swell;
 pub use tma::{tma_depth_factor, Tma};
 

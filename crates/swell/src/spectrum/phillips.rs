@@ -11,7 +11,7 @@
 //! Φ(k) = (α/2) k⁻³ exp(-1/(k L)²) exp(-k² l²)        F(k, θ) = Φ(k) D(θ) / k
 //! ```
 //!
-//! with `D` a normalised spreading (Tessendorf's `|k̂·ŵ|²` is [`super::Spreading::Cos2`]). Then
+//! with `D` a normalised spreading (Tessendorf's `|k̂·ŵ|²` is [`super::SpreadingFunction::Cos2`]). Then
 //! heights come out in metres and the tail agrees with Pierson-Moskowitz's.
 
 use super::G;

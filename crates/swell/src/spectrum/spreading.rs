@@ -10,32 +10,40 @@ use serde::{Deserialize, Serialize};
 
 use super::G;
 
-/// A directional spreading function.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
+crate::closed_set! {
+    /// The spreading functions a scene can name (`spreading = "..."` of the FFT ocean).
+    #[derive(Default)]
+    pub enum SpreadingFunction: "a spreading function" {
+        /// Tessendorf's `|k̂·ŵ|²` (Tessendorf 2001 §3.3, eq. 23), normalised to `(2/π) cos²θ` on the
+        /// downwind half-plane and **zero against the wind**: Tessendorf's own factor keeps waves
+        /// travelling against the wind as strong as those with it, which no wind raises; swell
+        /// suppresses them and renormalises.
+        Cos2 = "cos2",
+        /// Mitsuyasu's cos-2s (Mitsuyasu et al. 1975, J. Phys. Oceanogr. 5; as in Goda 2000, "Random
+        /// Seas and Design of Maritime Structures", §2.3.2):
+        /// `D = N(s) cos^(2s)(θ/2)`, `N(s) = 2^(2s-1) Γ(s+1)² / (π Γ(2s+1))`, with
+        /// `s = s_p (w/w_p)^5` below the peak and `s_p (w/w_p)^-2.5` above, `s_p = 11.5 (w_p U10/g)^-2.5`.
+        #[default]
+        Mitsuyasu = "mitsuyasu",
+        /// Donelan, Hamilton and Hui 1985 (Phil. Trans. R. Soc. A 315), with Banner's 1990 extension
+        /// above 1.6 w_p: `D = β / (2 tanh(βπ)) sech²(βθ)`, `β = 2.61 r^1.3` for `r = w/w_p < 0.95`,
+        /// `2.28 r^-1.3` for `0.95 <= r < 1.6`, `10^(-0.4 + 0.8393 exp(-0.567 ln r²))` above.
+        DonelanBanner = "donelan-banner",
+    }
+}
+
+/// A directional spreading as a spectrum evaluates it: one of the named functions, or a
+/// fixed-shape one that swell and Blender's keys set up (never named in a scene file).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Spreading {
-    /// Tessendorf's `|k̂·ŵ|²` (Tessendorf 2001 §3.3, eq. 23), normalised to `(2/π) cos²θ` on the
-    /// downwind half-plane and **zero against the wind**: Tessendorf's own factor keeps waves
-    /// travelling against the wind as strong as those with it, which no wind raises; swell
-    /// suppresses them and renormalises.
-    Cos2,
-    /// Mitsuyasu's cos-2s (Mitsuyasu et al. 1975, J. Phys. Oceanogr. 5; as in Goda 2000, "Random
-    /// Seas and Design of Maritime Structures", §2.3.2):
-    /// `D = N(s) cos^(2s)(θ/2)`, `N(s) = 2^(2s-1) Γ(s+1)² / (π Γ(2s+1))`, with
-    /// `s = s_p (w/w_p)^5` below the peak and `s_p (w/w_p)^-2.5` above, `s_p = 11.5 (w_p U10/g)^-2.5`.
-    Mitsuyasu,
-    /// Donelan, Hamilton and Hui 1985 (Phil. Trans. R. Soc. A 315), with Banner's 1990 extension
-    /// above 1.6 w_p: `D = β / (2 tanh(βπ)) sech²(βθ)`, `β = 2.61 r^1.3` for `r = w/w_p < 0.95`,
-    /// `2.28 r^-1.3` for `0.95 <= r < 1.6`, `10^(-0.4 + 0.8393 exp(-0.567 ln r²))` above.
-    DonelanBanner,
+    /// A function a scene names ([`SpreadingFunction`]).
+    Named(SpreadingFunction),
     /// cos-2s with a fixed exponent s (>= 0), e.g. for swell, which is narrow in direction.
-    #[serde(skip)]
     Cos2s(f64),
     /// Blender's Ocean modifier alignment (`[water.blender]`): `|cos θ|^exponent`, times `against`
     /// (in [0, 1]) where the wave runs against the wind (cos θ < 0), normalised over the circle
     /// with `∫ |cos θ|^p dθ = 2 sqrt(π) Γ((p+1)/2) / Γ(p/2+1)` (Gradshteyn and Ryzhik 3.621.5).
     /// Blender does not normalise; swell does, so alignment never changes the sea's energy.
-    #[serde(skip)]
     CosPower {
         /// p >= 0; 0 spreads waves evenly over every direction.
         exponent: f64,
@@ -44,17 +52,42 @@ pub enum Spreading {
     },
 }
 
-impl Spreading {
-    /// The names the scene format accepts for `spreading`.
-    pub const NAMES: &'static [&'static str] = &["cos2", "mitsuyasu", "donelan-banner"];
+impl From<SpreadingFunction> for Spreading {
+    fn from(f: SpreadingFunction) -> Self {
+        Spreading::Named(f)
+    }
+}
 
+impl Default for Spreading {
+    fn default() -> Self {
+        Spreading::Named(SpreadingFunction::default())
+    }
+}
+
+// By name, as the named functions are: the others are set up from other keys and never written.
+impl Serialize for Spreading {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        match self {
+            Spreading::Named(f) => f.serialize(s),
+            other => Err(serde::ser::Error::custom(format!("{other:?} has no name in a scene file"))),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Spreading {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        SpreadingFunction::deserialize(d).map(Spreading::Named)
+    }
+}
+
+impl Spreading {
     /// D(θ) in 1/rad for a wave of angular frequency `omega` in a sea with peak `peak_omega` (rad/s)
     /// raised by a 10 m wind `u10` (m/s). `theta` is relative to the mean direction, any real value.
     pub fn density(&self, theta: f64, omega: f64, peak_omega: f64, u10: f64) -> f64 {
         let theta = wrap_angle(theta);
         let r = omega / peak_omega;
         match *self {
-            Spreading::Cos2 => {
+            Spreading::Named(SpreadingFunction::Cos2) => {
                 let c = theta.cos();
                 if c > 0.0 {
                     2.0 / PI * c * c
@@ -62,12 +95,12 @@ impl Spreading {
                     0.0
                 }
             }
-            Spreading::Mitsuyasu => {
+            Spreading::Named(SpreadingFunction::Mitsuyasu) => {
                 let sp = 11.5 * (peak_omega * u10 / G).powf(-2.5);
                 let s = if r <= 1.0 { sp * r.powi(5) } else { sp * r.powf(-2.5) };
                 cos_2s(theta, s)
             }
-            Spreading::DonelanBanner => {
+            Spreading::Named(SpreadingFunction::DonelanBanner) => {
                 let beta = if r < 0.95 {
                     2.61 * r.powf(1.3)
                 } else if r < 1.6 {
@@ -157,9 +190,9 @@ mod tests {
     fn every_spreading_integrates_to_one() {
         let wp = 0.8;
         for spreading in [
-            Spreading::Cos2,
-            Spreading::Mitsuyasu,
-            Spreading::DonelanBanner,
+            Spreading::Named(SpreadingFunction::Cos2),
+            Spreading::Named(SpreadingFunction::Mitsuyasu),
+            Spreading::Named(SpreadingFunction::DonelanBanner),
             Spreading::Cos2s(25.0),
             Spreading::CosPower { exponent: 0.0, against: 1.0 },
             Spreading::CosPower { exponent: 2.0, against: 0.25 },
@@ -175,15 +208,20 @@ mod tests {
 
     #[test]
     fn spreading_peaks_downwind_and_cos2_has_nothing_upwind() {
-        for spreading in [Spreading::Cos2, Spreading::Mitsuyasu, Spreading::DonelanBanner] {
+        for spreading in [
+            Spreading::Named(SpreadingFunction::Cos2),
+            Spreading::Named(SpreadingFunction::Mitsuyasu),
+            Spreading::Named(SpreadingFunction::DonelanBanner),
+        ] {
             let d = |t: f64| spreading.density(t, 1.0, 1.0, 10.0);
             assert!(d(0.0) > d(0.5) && d(0.5) > d(1.5) && d(1.5) >= d(3.0), "{spreading:?}");
         }
-        assert_eq!(Spreading::Cos2.density(2.0, 1.0, 1.0, 10.0), 0.0);
+        assert_eq!(Spreading::Named(SpreadingFunction::Cos2).density(2.0, 1.0, 1.0, 10.0), 0.0);
         assert_eq!(wrap_angle(-PI), PI);
         assert!(
-            (Spreading::Cos2.density(0.3 + 4.0 * PI, 1.0, 1.0, 10.0) - Spreading::Cos2.density(0.3, 1.0, 1.0, 10.0))
-                .abs()
+            (Spreading::Named(SpreadingFunction::Cos2).density(0.3 + 4.0 * PI, 1.0, 1.0, 10.0)
+                - Spreading::Named(SpreadingFunction::Cos2).density(0.3, 1.0, 1.0, 10.0))
+            .abs()
                 < 1e-12
         );
     }

@@ -32,9 +32,9 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use serde::Serialize;
 
-pub use self::blender::{BlenderOcean, BlenderSpectrum, BLENDER_RESOLUTION_RANGE};
+pub use self::blender::{BlenderOcean, BLENDER_RESOLUTION_RANGE};
 use self::cascade::{Cascade, CascadeSetup, PAIR_H_DX};
-pub use self::params::{FftOceanParams, SpectrumKind, SwellParams, FFT_GRID_RANGE, MAX_CASCADES};
+pub use self::params::{FftOceanParams, SwellParams, FFT_GRID_RANGE, MAX_CASCADES};
 use super::foam::FoamField;
 use super::wave_model::{WaveModel, INVERSION_MAX_ITERATIONS, INVERSION_TOLERANCE};
 use crate::error::Result;

@@ -21,10 +21,9 @@ mod wave_model;
 mod wave_set;
 
 pub use airy::{Airy, AiryParams, AiryWave, MAX_AIRY_WAVES};
-pub use fft_ocean::{BlenderOcean, BlenderSpectrum, BLENDER_RESOLUTION_RANGE};
+pub use fft_ocean::{BlenderOcean, BLENDER_RESOLUTION_RANGE};
 pub use fft_ocean::{
-    FftOcean, FftOceanParams, SeaState, SpectrumKind, StageTimes, SwellParams, CASCADE_SCALE, FFT_GRID_RANGE,
-    MAX_CASCADES,
+    FftOcean, FftOceanParams, SeaState, StageTimes, SwellParams, CASCADE_SCALE, FFT_GRID_RANGE, MAX_CASCADES,
 };
 pub use foam::{
     foam_coverage, foam_update, FoamField, FoamUpdate, LatticeSteps, FOAM_FADE_FLOOR, FOAM_LATTICE_STEP_S, FOAM_RAMP,

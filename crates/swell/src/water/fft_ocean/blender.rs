@@ -19,29 +19,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::params::{FftOceanParams, SpectrumKind};
-use crate::error::{check_count, check_range, Error, Result};
-use crate::spectrum::Spreading;
+use crate::error::{check_count, check_range, Result};
+use crate::spectrum::{SpectrumKind, Spreading};
 
 /// Smallest and largest `resolution`: `resolution²` must give a grid in swell's 16..2048.
 pub const BLENDER_RESOLUTION_RANGE: (u32, u32) = (4, 45);
 
 /// Blender's JONSWAP peak enhancement is clamped to this range (Blender `ocean_spectrum.cc`).
 const BLENDER_GAMMA_RANGE: (f32, f32) = (1.0, 6.0);
-
-/// Blender's spectrum menu (`spectrum` in `[water.blender]`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum BlenderSpectrum {
-    /// "Turbulent Ocean": Tessendorf's Phillips spectrum (Blender's default).
-    Phillips,
-    /// "Established Ocean": Pierson-Moskowitz.
-    PiersonMoskowitz,
-    /// "Established Ocean (Sharp Peaks)": JONSWAP.
-    Jonswap,
-    /// "Shallow Water": TMA (Texel, Marsen and Arsloe), JONSWAP in finite depth.
-    TexelMarsenArsloe,
-}
 
 /// The Ocean modifier's simulation keys with Blender's names, defaults and meaning.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -71,8 +56,10 @@ pub struct BlenderOcean {
     pub wind_velocity: f32,
     /// Water depth, m, in [0.1, 10000], used by the dispersion relation (and by TMA). Default 200.
     pub depth: f32,
-    /// Spectrum. Default `phillips`.
-    pub spectrum: BlenderSpectrum,
+    /// Spectrum: Blender's "Turbulent Ocean" is `phillips`, "Established Ocean"
+    /// `pierson-moskowitz`, "Established Ocean (Sharp Peaks)" `jonswap`, "Shallow Water" `tma`
+    /// (Blender's `texel-marsen-arsloe` is read too). Default `phillips`.
+    pub spectrum: SpectrumKind,
     /// Fetch, km, in [0.1, 10000] (JONSWAP and TMA). Default 120.
     pub fetch_jonswap: f32,
     /// Peak sharpening s in [0, 1]: γ = 10 s clamped to [1, 6] (JONSWAP and TMA). Default 0 (γ = 1).
@@ -96,7 +83,7 @@ impl Default for BlenderOcean {
             choppiness: 1.0,
             wind_velocity: 30.0,
             depth: 200.0,
-            spectrum: BlenderSpectrum::Phillips,
+            spectrum: SpectrumKind::Phillips,
             fetch_jonswap: 120.0,
             sharpen_peak_jonswap: 0.0,
             random_seed: 0,
@@ -129,6 +116,13 @@ impl BlenderOcean {
         Ok(())
     }
 
+    /// The JONSWAP peak enhancement γ Blender uses: `10 x sharpen_peak_jonswap`, clamped to
+    /// [1, 6] as Blender does.
+    pub fn gamma(&self) -> f32 {
+        let (lo, hi) = BLENDER_GAMMA_RANGE;
+        (10.0 * self.sharpen_peak_jonswap).clamp(lo, hi)
+    }
+
     /// The directional spreading Blender applies: `|cos θ|^p`, p = 10 x alignment, and against
     /// the wind a factor `(1 - damping)^p` for Phillips (Blender damps the cosine before raising it)
     /// or `1 - damping` for the other spectra, none when p = 0 (Blender `ocean.cc`, `ocean_spectrum.cc`).
@@ -137,78 +131,9 @@ impl BlenderOcean {
         let keep = 1.0 - f64::from(self.damping);
         let against = match self.spectrum {
             _ if exponent == 0.0 => 1.0,
-            BlenderSpectrum::Phillips => keep.powf(exponent),
+            SpectrumKind::Phillips => keep.powf(exponent),
             _ => keep,
         };
         Spreading::CosPower { exponent, against }
-    }
-
-    /// swell's own parameters for this Blender ocean: the sea keys of `base` are replaced, the rest
-    /// (cascades, loop period, foam) kept. Assumes both are valid.
-    pub fn apply(&self, base: &FftOceanParams) -> FftOceanParams {
-        let (g_lo, g_hi) = BLENDER_GAMMA_RANGE;
-        FftOceanParams {
-            grid: self.grid(),
-            patch_size: self.spatial_size,
-            spectrum: match self.spectrum {
-                BlenderSpectrum::Phillips => SpectrumKind::Phillips,
-                BlenderSpectrum::PiersonMoskowitz => SpectrumKind::PiersonMoskowitz,
-                BlenderSpectrum::Jonswap => SpectrumKind::Jonswap,
-                BlenderSpectrum::TexelMarsenArsloe => SpectrumKind::Tma,
-            },
-            wind_speed: self.wind_velocity,
-            wind_direction_deg: self.wave_direction_deg,
-            fetch_km: self.fetch_jonswap,
-            depth: Some(self.depth),
-            choppiness: self.choppiness,
-            spreading: self.spreading(),
-            gamma: (10.0 * self.sharpen_peak_jonswap).clamp(g_lo, g_hi),
-            small_wave_cutoff: self.wave_scale_min,
-            seed: self.random_seed,
-            ..base.clone()
-        }
-    }
-}
-
-/// The `[water]` keys a `[water.blender]` table replaces, with the Blender key that sets each.
-const REPLACED_KEYS: [(&str, &str); 12] = [
-    ("grid", "resolution"),
-    ("patch_size", "spatial_size"),
-    ("spectrum", "spectrum"),
-    ("wind_speed", "wind_velocity"),
-    ("wind_direction_deg", "wave_direction_deg"),
-    ("fetch_km", "fetch_jonswap"),
-    ("depth", "depth"),
-    ("choppiness", "choppiness"),
-    ("spreading", "wave_alignment"),
-    ("gamma", "sharpen_peak_jonswap"),
-    ("small_wave_cutoff", "wave_scale_min"),
-    ("seed", "random_seed"),
-];
-
-/// Refuses a `[water]` sea key that a `[water.blender]` table also sets (one of the two would be
-/// silently ignored). `params` holds the user's keys, `key` is normally `water`.
-pub(super) fn check_not_both(params: &FftOceanParams, key: &str) -> Result<()> {
-    let d = FftOceanParams::default();
-    let given = [
-        params.grid != d.grid,
-        params.patch_size != d.patch_size,
-        params.spectrum != d.spectrum,
-        params.wind_speed != d.wind_speed,
-        params.wind_direction_deg != d.wind_direction_deg,
-        params.fetch_km != d.fetch_km,
-        params.depth != d.depth,
-        params.choppiness != d.choppiness,
-        params.spreading != d.spreading,
-        params.gamma != d.gamma,
-        params.small_wave_cutoff != d.small_wave_cutoff,
-        params.seed != d.seed,
-    ];
-    match REPLACED_KEYS.iter().zip(given).find(|(_, g)| *g) {
-        Some(((swell_key, blender_key), _)) => Err(Error::invalid(
-            format!("{key}.{swell_key}"),
-            format!("set by {key}.blender.{blender_key} when [{key}.blender] is given; remove one of them"),
-        )),
-        None => Ok(()),
     }
 }

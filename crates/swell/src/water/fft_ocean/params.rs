@@ -2,30 +2,17 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::blender::{check_not_both, BlenderOcean};
+use super::blender::BlenderOcean;
 use crate::error::{check_count, check_range, Error, Result};
 use crate::spectrum::{
-    DirectionalSpectrum, Dispersion, Jonswap, Phillips, PiersonMoskowitz, Spreading, Swell, Tma, WindSea,
+    DirectionalSpectrum, Dispersion, Jonswap, Phillips, PiersonMoskowitz, SpectrumKind, Spreading, SpreadingFunction,
+    Swell, Tma, WindSea,
 };
 
 /// Smallest and largest FFT grid side.
 pub const FFT_GRID_RANGE: (u32, u32) = (16, 2048);
 /// Most cascades (patches of different sizes) one ocean sums.
 pub const MAX_CASCADES: u32 = 4;
-
-/// Which wind-sea spectrum (`spectrum` key).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SpectrumKind {
-    /// Tessendorf's Phillips spectrum.
-    Phillips,
-    /// Pierson-Moskowitz, fully developed.
-    PiersonMoskowitz,
-    /// JONSWAP, fetch-limited.
-    Jonswap,
-    /// TMA: JONSWAP in finite depth (needs `depth`).
-    Tma,
-}
 
 /// A swell added to the wind sea (`[water.swell]`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -118,7 +105,7 @@ impl Default for FftOceanParams {
             fetch_km: 100.0,
             depth: None,
             choppiness: 1.0,
-            spreading: Spreading::Mitsuyasu,
+            spreading: Spreading::Named(SpreadingFunction::Mitsuyasu),
             gamma: 3.3,
             small_wave_cutoff: 0.0,
             seed: 0,
@@ -131,6 +118,49 @@ impl Default for FftOceanParams {
             swell: None,
             blender: None,
         }
+    }
+}
+
+/// The `[water]` keys a `[water.blender]` table replaces, with the Blender key that sets each.
+const REPLACED_KEYS: [(&str, &str); 12] = [
+    ("grid", "resolution"),
+    ("patch_size", "spatial_size"),
+    ("spectrum", "spectrum"),
+    ("wind_speed", "wind_velocity"),
+    ("wind_direction_deg", "wave_direction_deg"),
+    ("fetch_km", "fetch_jonswap"),
+    ("depth", "depth"),
+    ("choppiness", "choppiness"),
+    ("spreading", "wave_alignment"),
+    ("gamma", "sharpen_peak_jonswap"),
+    ("small_wave_cutoff", "wave_scale_min"),
+    ("seed", "random_seed"),
+];
+
+/// Refuses a `[water]` sea key that a `[water.blender]` table also sets (one of the two would be
+/// silently ignored). `params` holds the user's keys, `key` is normally `water`.
+fn check_not_both(params: &FftOceanParams, key: &str) -> Result<()> {
+    let d = FftOceanParams::default();
+    let given = [
+        params.grid != d.grid,
+        params.patch_size != d.patch_size,
+        params.spectrum != d.spectrum,
+        params.wind_speed != d.wind_speed,
+        params.wind_direction_deg != d.wind_direction_deg,
+        params.fetch_km != d.fetch_km,
+        params.depth != d.depth,
+        params.choppiness != d.choppiness,
+        params.spreading != d.spreading,
+        params.gamma != d.gamma,
+        params.small_wave_cutoff != d.small_wave_cutoff,
+        params.seed != d.seed,
+    ];
+    match REPLACED_KEYS.iter().zip(given).find(|(_, g)| *g) {
+        Some(((swell_key, blender_key), _)) => Err(Error::invalid(
+            format!("{key}.{swell_key}"),
+            format!("set by {key}.blender.{blender_key} when [{key}.blender] is given; remove one of them"),
+        )),
+        None => Ok(()),
     }
 }
 
@@ -153,7 +183,7 @@ impl FftOceanParams {
         }
         check_range(&k("choppiness"), self.choppiness, 0.0, 2.0)?;
         if let Spreading::Cos2s(_) | Spreading::CosPower { .. } = self.spreading {
-            return Err(Error::invalid(k("spreading"), format!("valid: {}", Spreading::NAMES.join(", "))));
+            return Err(Error::invalid(k("spreading"), format!("valid: {}", SpreadingFunction::NAMES.join(", "))));
         }
         check_range(&k("gamma"), self.gamma, 1.0, 10.0)?;
         check_range(&k("small_wave_cutoff"), self.small_wave_cutoff, 0.0, 100.0)?;
@@ -177,11 +207,31 @@ impl FftOceanParams {
     }
 
     /// The parameters the sea is built from: these, or with `[water.blender]` the Blender keys
-    /// mapped onto swell's ([`BlenderOcean::apply`]). Assumes `self` is valid.
+    /// mapped onto swell's ([`FftOceanParams::with_blender`]). Assumes `self` is valid.
     pub fn resolved(&self) -> FftOceanParams {
         match &self.blender {
-            Some(b) => b.apply(self),
+            Some(b) => self.with_blender(b),
             None => self.clone(),
+        }
+    }
+
+    /// swell's own parameters for the Blender ocean `b`: the sea keys of `self` are replaced, the
+    /// rest (cascades, loop period, foam) kept. Assumes both are valid.
+    pub fn with_blender(&self, b: &BlenderOcean) -> FftOceanParams {
+        FftOceanParams {
+            grid: b.grid(),
+            patch_size: b.spatial_size,
+            spectrum: b.spectrum,
+            wind_speed: b.wind_velocity,
+            wind_direction_deg: b.wave_direction_deg,
+            fetch_km: b.fetch_jonswap,
+            depth: Some(b.depth),
+            choppiness: b.choppiness,
+            spreading: b.spreading(),
+            gamma: b.gamma(),
+            small_wave_cutoff: b.wave_scale_min,
+            seed: b.random_seed,
+            ..self.clone()
         }
     }
 

@@ -2,7 +2,7 @@
 
 use super::cascade::{PAIR_DZZ_DXZ, PAIR_DZ_HX, PAIR_HZ_DXX};
 use super::*;
-use crate::spectrum::{u19_5_from_u10, Spreading, G};
+use crate::spectrum::{u19_5_from_u10, SpectrumKind, Spreading, SpreadingFunction, G};
 
 fn params(grid: u32, patch: f32) -> FftOceanParams {
     FftOceanParams { grid, patch_size: patch, ..FftOceanParams::default() }
@@ -121,7 +121,7 @@ fn a_fully_developed_pierson_moskowitz_sea_has_hs_0_21_u19_5_squared_over_g() {
     let p = FftOceanParams {
         spectrum: SpectrumKind::PiersonMoskowitz,
         wind_speed: u10,
-        spreading: Spreading::Cos2,
+        spreading: Spreading::Named(SpreadingFunction::Cos2),
         ..params(256, 1000.0)
     };
     let o = ocean(&p);
@@ -193,7 +193,11 @@ fn the_mean_jacobian_is_one_and_positive_choppiness_sharpens_crests() {
 #[test]
 fn crests_travel_downwind() {
     for (dir, sign) in [(0.0, -1.0), (180.0, 1.0)] {
-        let p = FftOceanParams { wind_direction_deg: dir, spreading: Spreading::Cos2, ..params(64, 200.0) };
+        let p = FftOceanParams {
+            wind_direction_deg: dir,
+            spreading: Spreading::Named(SpreadingFunction::Cos2),
+            ..params(64, 200.0)
+        };
         let mut o = ocean(&p);
         let h0 = heights(&o);
         let hx: Vec<f32> = o.cascades[0].fields[PAIR_DZ_HX].iter().map(|c| c.im).collect();
@@ -498,7 +502,7 @@ mod blender {
         let b = BlenderOcean {
             resolution: 8,
             spatial_size: 120.0,
-            spectrum: BlenderSpectrum::TexelMarsenArsloe,
+            spectrum: SpectrumKind::Tma,
             sharpen_peak_jonswap: 0.33,
             wind_velocity: 12.0,
             depth: 15.0,
