@@ -90,7 +90,7 @@ impl Renderer {
         }
         if let Some(water) = &world.water {
             let sea = match water.extent {
-                WaterExtent::Unbounded => self.sea.update(water, &scene.camera, world.time()),
+                WaterExtent::Unbounded => self.sea.update(water, &scene.camera, world.time(), h),
                 WaterExtent::Patch => None,
             };
             let mesh = match sea {

@@ -122,19 +122,15 @@ pub fn widened_lobe(shininess: f32, variance: f32) -> (f32, f32) {
     (s, (s + 2.0) / (shininess.max(0.0) + 2.0))
 }
 
-/// Four unit normals spread about `n` by the slope deviation of total variance `variance`
-/// (±sigma along two perpendicular horizontal axes): where the reflected sky is averaged, so a rough
-/// far sea reflects the sky above the horizon as well as the horizon itself.
-pub fn spread_normals(n: Vec3, variance: f32) -> [Vec3; 4] {
+/// Two unit normals spread about `n` by the slope deviation of total variance `variance`, tilted
+/// by ±sigma towards and away from `to_eye` in the plane of incidence: where the reflected sky is
+/// averaged, so a rough far sea reflects the sky above the horizon as well as the horizon itself.
+/// The sky varies with elevation only, which tilts across the plane of incidence barely change,
+/// so two samples stand for the four of a full cross.
+pub fn spread_normals(n: Vec3, to_eye: Vec3, variance: f32) -> [Vec3; 2] {
     let sigma = (0.5 * variance.max(0.0)).sqrt();
-    let t = n.any_orthonormal_vector();
-    let b = n.cross(t);
-    [
-        (n + sigma * t).normalize_or(n),
-        (n - sigma * t).normalize_or(n),
-        (n + sigma * b).normalize_or(n),
-        (n - sigma * b).normalize_or(n),
-    ]
+    let t = (to_eye - n * n.dot(to_eye)).normalize_or(n.any_orthonormal_vector());
+    [(n + sigma * t).normalize_or(n), (n - sigma * t).normalize_or(n)]
 }
 
 #[cfg(test)]

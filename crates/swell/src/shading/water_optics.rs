@@ -157,9 +157,9 @@ pub fn shade_water_filtered(
     let sky = terrain.unwrap_or_else(|| {
         if filtered {
             // The sky the slopes' spread of normals reflects, averaged.
-            spread_normals(n, unresolved).iter().fold(Vec3::ZERO, |acc, &s| {
+            spread_normals(n, to_eye, unresolved).iter().fold(Vec3::ZERO, |acc, &s| {
                 let c = s.dot(to_eye).max(0.0);
-                acc + 0.25 * sky_along(2.0 * c * s - to_eye)
+                acc + 0.5 * sky_along(2.0 * c * s - to_eye)
             })
         } else {
             sky_along(reflected)
