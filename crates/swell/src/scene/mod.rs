@@ -35,7 +35,7 @@ pub use terrain_spec::{
     HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,
 };
 pub use texture::{Texture, MAX_TEXTURE_SIDE};
-pub use water_extent::{LodSettings, WaterExtent, LOD_RING_CELLS, LOD_SPACING_M, MAX_LOD_LEVELS};
+pub use water_extent::{LodSettings, WaterExtent, LOD_RING_CELLS, LOD_SPACING_M, MAX_LOD_LEVELS, MAX_LOD_VERTICES};
 pub use water_material::MAX_ABSORPTION;
 pub use water_placement::WaterPlacement;
 pub use water_query::{Water, NORMAL_STEP_M};

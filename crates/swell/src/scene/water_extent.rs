@@ -81,6 +81,10 @@ pub const LOD_RING_CELLS: (u32, u32) = (8, 1024);
 /// Smallest and largest finest-ring vertex spacing (m) ([`LodSettings::spacing`]).
 pub const LOD_SPACING_M: (f32, f32) = (0.001, 100.0);
 
+/// Most vertices the rings may hold together (`levels x (ring_cells + 1)^2`): a 2048² patch's
+/// worth, about 120 MB with the index buffer, so that no LOD setting can exhaust memory.
+pub const MAX_LOD_VERTICES: u64 = 2049 * 2049;
+
 /// `[water.lod]`: the camera-following mesh of unbounded water ([`crate::mesh::Clipmap`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -114,6 +118,20 @@ impl LodSettings {
                 "water.lod.ring_cells",
                 self.ring_cells,
                 format!("multiples of 4 in [{lo}, {hi}]"),
+            ));
+        }
+        let vertices = u64::from(self.levels) * u64::from(self.ring_cells + 1).pow(2);
+        if vertices > MAX_LOD_VERTICES {
+            // The largest ring side that fits this many levels, rounded down to a multiple of 4.
+            let side = ((MAX_LOD_VERTICES / u64::from(self.levels)) as f64).sqrt() as u64 - 1;
+            return Err(Error::out_of_range(
+                "water.lod.ring_cells",
+                self.ring_cells,
+                format!(
+                    "multiples of 4 in [{lo}, {}] with {} levels (at most {MAX_LOD_VERTICES} ring vertices)",
+                    side / 4 * 4,
+                    self.levels
+                ),
             ));
         }
         if let Some(s) = self.spacing {
@@ -164,6 +182,10 @@ mod tests {
             ("[water.lod]\nlevels = 0", "water.lod.levels = 0 is outside [1, 16]"),
             ("[water.lod]\nring_cells = 30", "water.lod.ring_cells = 30 is outside multiples of 4 in [8, 1024]"),
             ("[water.lod]\nspacing = -1.0", "water.lod.spacing = -1 is outside [0.001, 100] m"),
+            (
+                "[water.lod]\nlevels = 16\nring_cells = 1024",
+                "water.lod.ring_cells = 1024 is outside multiples of 4 in [8, 508] with 16 levels (at most 4198401 ring vertices)",
+            ),
         ] {
             let e = scene(keys, "gerstner").unwrap_err().to_string();
             assert_eq!(e, format!("t: {message}"));
