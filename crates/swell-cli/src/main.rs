@@ -7,6 +7,7 @@ mod args;
 mod bench;
 mod cmd;
 mod interrupt;
+mod thread_pool;
 
 use std::process::ExitCode;
 

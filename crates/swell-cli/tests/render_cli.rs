@@ -120,10 +120,12 @@ fn bad_input_gives_a_clear_error_and_no_output() {
     std::fs::create_dir(d.join("scenes")).unwrap();
     std::fs::write(d.join("scenes/tex.toml"), "[water]\nmodel = 'sines'\n[water.material]\ntexture = 'gone.png'\n")
         .unwrap();
+    // Resolved to an absolute path (Scene::load), so that a scene saved elsewhere still finds it.
+    let beside = std::path::absolute(d).unwrap().join("scenes/gone.png");
     fails_cleanly(
         d,
         &["render", "--scene", "scenes/tex.toml", "--out", "x.png"],
-        "water.material.texture: scenes/gone.png: ",
+        &format!("water.material.texture: {}: ", beside.display()),
     );
     fails_cleanly(d, &["render", "--scene", "binary.toml", "--out", "x.png"], "not UTF-8");
     fails_cleanly(d, &["render", "--scene", "missing.toml", "--out", "x.png"], "missing.toml");

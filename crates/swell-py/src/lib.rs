@@ -35,14 +35,6 @@ fn check_time(t: f64) -> PyResult<()> {
     }
 }
 
-/// Reads a scene file as the CLI's `--scene` does: at most `MAX_SCENE_BYTES`, relative paths
-/// resolved against the file's directory.
-fn load_scene_file(path: &std::path::Path) -> swell::Result<Scene> {
-    let text = swell::limits::read_text_limited(path, swell::limits::MAX_SCENE_BYTES, "MAX_SCENE_BYTES")?;
-    let mut scene = Scene::from_toml(&text, &path.display().to_string())?;
-    scene.resolve_paths(path.parent().unwrap_or(std::path::Path::new("")));
-    Ok(scene)
-}
 
 /// The water of a scene, built and ready to answer queries about any time `t` (s).
 ///
@@ -98,7 +90,7 @@ impl Water {
     #[staticmethod]
     fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let water =
-            py.allow_threads(|| load_scene_file(&path).and_then(|s| swell::Water::from_scene(&s))).map_err(py_err)?;
+            py.allow_threads(|| Scene::load(&path).and_then(|s| swell::Water::from_scene(&s))).map_err(py_err)?;
         Ok(Self { inner: Mutex::new(water) })
     }
 

@@ -7,14 +7,10 @@ use swell::export::{write_atomically, write_png};
 use swell::scene::Scene;
 use swell::{Error, Result};
 
-/// Reads and validates a scene file; errors name the file and the key.
+/// Reads and validates a scene file through the library's one loader ([`Scene::load`]: size and
+/// nesting limits, paths resolved beside the file); errors name the file and the key.
 pub fn read_scene(path: &Path) -> Result<Scene> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let text = String::from_utf8(bytes).map_err(|_| Error::Parse {
-        path: path.display().to_string(),
-        message: "not UTF-8 text (a scene file is TOML)".into(),
-    })?;
-    Scene::from_toml(&text, &path.display().to_string())
+    Scene::load(path)
 }
 
 /// Writes `scene` as TOML to `path`, atomically.

@@ -17,7 +17,7 @@ use eframe::egui::{self, Rect};
 use eframe::egui_glow;
 use eframe::glow::{self, HasContext};
 
-use crate::live_view::StageTimes;
+use crate::frame::StageTimes;
 
 /// The newest frame and the GL objects that show it, shared with egui's paint callback.
 #[derive(Default)]

@@ -69,6 +69,7 @@ pub mod camera_control;
 pub mod clock;
 pub mod editor;
 pub mod files;
+pub mod frame;
 pub mod frame_stats;
 pub mod gl_view;
 pub mod live_view;

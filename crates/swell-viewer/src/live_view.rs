@@ -7,36 +7,14 @@
 //! the next one, which is then rendered while egui paints.
 
 use std::path::Path;
-use std::time::Duration;
 
 use eframe::egui::{self, Rect};
 use swell::scene::Scene;
 use swell::{Error, Result};
 
+use crate::frame::{FrameKey, StageTimes};
 use crate::gl_view::{GlView, ShownFrame};
 use crate::render_thread::{Disturbance, RenderThread, Request};
-
-/// How long each stage of one frame took.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct StageTimes {
-    /// `World::update` (and, after a scene change, following it), on the render thread.
-    pub simulate: Duration,
-    /// Rasterizing and encoding to RGBA8, on the render thread.
-    pub render: Duration,
-    /// Copying into the window's texture, at the paint that shows the frame (zero until then).
-    pub upload: Duration,
-}
-
-/// What a frame was rendered from; a frame with the same key would be identical.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FrameKey {
-    /// [`crate::editor::SceneEditor::revision`] of the scene.
-    pub revision: u64,
-    /// Simulation time, seconds.
-    pub time: f64,
-    /// Image size in pixels.
-    pub size: [u32; 2],
-}
 
 /// The render thread, the frame on screen and the bookkeeping between them.
 pub struct LiveView {

@@ -17,7 +17,7 @@ use swell::render::Renderer;
 use swell::scene::{Scene, World, MAX_IMAGE_SIDE};
 use swell::{Error, Result};
 
-use crate::live_view::{FrameKey, StageTimes};
+use crate::frame::{FrameKey, StageTimes};
 
 /// A dent dropped on the water at world (x, z): `depth` and `radius` in metres.
 #[derive(Clone, Copy, Debug, PartialEq)]

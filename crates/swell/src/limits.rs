@@ -5,7 +5,7 @@
 //!
 //! 1. a per-key limit (image side, grid cells, terrain side, frames, waves...), checked where the key
 //!    is validated and named in its error (`render.width = 20000 is outside [1, 16384]`);
-//! 2. a whole-job memory estimate ([`estimate_world_bytes`], [`estimate_frame_bytes`]) compared with
+//! 2. a whole-job memory estimate (`Scene::estimate_bytes`, [`estimate_frame_bytes`]) compared with
 //!    [`MEMORY_BUDGET_BYTES`] by [`check_memory`], because keys that are each within their limit can
 //!    still add up to more than a machine holds (a 4096² water grid *and* a 4097² terrain *and* a
 //!    16384² image).
@@ -14,21 +14,12 @@
 //! to be within a factor of 1.5 of the real peak, which is enough to refuse a job that would exhaust
 //! memory while never refusing one that fits comfortably.
 //!
-//! The per-key limits live beside the keys they limit and are re-exported here so the whole list
-//! can be read in one place (`docs/ROBUSTNESS.md` gives the reasons).
+//! The per-key limits live beside the keys they limit (`MAX_IMAGE_SIDE` in `scene/render_settings.rs`,
+//! `MAX_GERSTNER_WAVES` in `water/gerstner.rs`...); `docs/ROBUSTNESS.md` lists them all with their
+//! reasons. This module is the bottom layer: it imports nothing of swell but its error type, so
+//! every layer may use it.
 
 use crate::error::{Error, Result};
-use crate::scene::{Scene, TerrainGenerator, DEFAULT_TERRAIN_SIZE};
-
-pub use crate::math::MAX_GRID_CELLS;
-pub use crate::mesh::{MAX_OBJ_BYTES, MAX_OBJ_TRIANGLES, MAX_OBJ_VERTICES};
-pub use crate::render::MAX_VIEW_JSON_BYTES;
-pub use crate::scene::{MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_THREADS};
-pub use crate::terrain::{MAX_HEIGHTMAP_BYTES, MAX_TERRAIN_SIZE};
-pub use crate::water::{
-    MAX_AIRY_WAVES, MAX_GERSTNER_WAVES, MAX_NOISE_OCTAVES, MAX_SINE_WAVES, MAX_SPRING_CELLS, MAX_STEEP_SINE_WAVES,
-    MAX_STEPS_PER_ADVANCE, MAX_TESSENDORF_WAVES,
-};
 
 /// Most memory (bytes) one job may plan to use: 4 GiB.
 ///
@@ -114,40 +105,6 @@ pub fn estimate_grid_bytes(cells_x: u32, cells_z: u32, per_vertex: u64) -> u64 {
     // Saturating: the estimate may be asked about unvalidated sizes, and must not wrap to small.
     let verts = (cells_x as u64 + 1).saturating_mul(cells_z as u64 + 1);
     verts.saturating_mul(per_vertex).saturating_add((cells_x as u64 * cells_z as u64).saturating_mul(BYTES_PER_CELL))
-}
-
-/// Estimated peak bytes of building and rendering `scene` one frame at a time: water grid, FFT
-/// cascades, terrain grid (a heightmap is counted when its header is read, since its size is only
-/// known from the file), and framebuffer, supersampled where asked.
-///
-/// Does not read any file; call it before anything is allocated.
-pub fn estimate_world_bytes(scene: &Scene) -> u64 {
-    let mut bytes = estimate_frame_bytes(scene.render.width, scene.render.height);
-    // Supersampling renders into a frame `supersample` times larger on each side, then filters it
-    // down into the frame above.
-    let ss = scene.render.supersample.max(1);
-    if ss > 1 {
-        let big = estimate_frame_bytes(scene.render.width.saturating_mul(ss), scene.render.height.saturating_mul(ss));
-        bytes = bytes.saturating_add(big);
-    }
-    if let Some(w) = &scene.water {
-        bytes =
-            bytes.saturating_add(estimate_grid_bytes(w.surface.cells[0], w.surface.cells[1], WATER_BYTES_PER_VERTEX));
-        if let crate::scene::WaterModelSpec::Fft(p) = &w.model {
-            bytes = bytes.saturating_add(estimate_fft_bytes(p.grid, p.cascades));
-        }
-    }
-    if let Some(t) = &scene.terrain {
-        let side = match t.generator {
-            // Known only once the header is read; that read checks the real size again.
-            TerrainGenerator::Heightmap(_) => 0,
-            _ => t.size.unwrap_or(DEFAULT_TERRAIN_SIZE),
-        };
-        if side >= 2 {
-            bytes = bytes.saturating_add(estimate_grid_bytes(side - 1, side - 1, TERRAIN_BYTES_PER_VERTEX));
-        }
-    }
-    bytes
 }
 
 /// Refuses a job whose estimate `bytes` passes [`MEMORY_BUDGET_BYTES`]; `what` says what was
@@ -287,6 +244,8 @@ fn nesting_depth(text: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::MAX_GRID_CELLS;
+    use crate::scene::MAX_IMAGE_SIDE;
 
     #[test]
     fn nesting_counts_brackets_outside_strings_and_comments() {

@@ -19,7 +19,7 @@ use super::report::{PaperUnit, PlotKind, Point, Report, Series};
 use super::timing::summarize;
 use super::Context;
 use crate::args::BenchArgs;
-use crate::cmd::thread_pool;
+use crate::thread_pool::thread_pool;
 
 /// Untimed steps before measuring (caches, page faults, thread start-up).
 const WARM_UP_STEPS: u32 = 5;

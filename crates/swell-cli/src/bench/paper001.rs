@@ -18,7 +18,7 @@ use swell::Result;
 use super::report::{PaperUnit, PlotKind, Point, Report, Series};
 use super::timing::{measure, Stats};
 use super::Context;
-use crate::cmd::thread_pool;
+use crate::thread_pool::thread_pool;
 
 /// Image size, pixels.
 pub const IMAGE: (u32, u32) = (800, 800);

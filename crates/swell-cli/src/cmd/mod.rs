@@ -12,7 +12,9 @@ mod view;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use swell::error::Human;
-use swell::scene::{preset, Scene, World, MAX_THREADS};
+use swell::scene::{preset, Scene, World};
+
+pub use crate::thread_pool::thread_pool;
 use swell::water::MAX_STEPS_PER_ADVANCE;
 use swell::{Error, Result};
 
@@ -46,31 +48,7 @@ pub fn load_scene(source: &SceneSource) -> Result<Scene> {
 fn read_scene(source: &SceneSource) -> Result<Scene> {
     match (&source.preset, &source.scene) {
         (Some(name), _) => preset(name),
-        (None, Some(path)) => {
-            // Read at most one byte past the limit, so a huge file (or /dev/zero) is refused
-            // without being read whole; Scene::from_toml then names the limit.
-            let mut bytes = Vec::new();
-            let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-            std::io::Read::read_to_end(&mut std::io::Read::take(file, swell::limits::MAX_SCENE_BYTES + 1), &mut bytes)
-                .map_err(|e| Error::io(path, e))?;
-            if bytes.len() as u64 > swell::limits::MAX_SCENE_BYTES {
-                return Err(Error::Parse {
-                    path: path.display().to_string(),
-                    message: format!(
-                        "over the scene-file limit of {} bytes (MAX_SCENE_BYTES)",
-                        swell::limits::MAX_SCENE_BYTES
-                    ),
-                });
-            }
-            let text = String::from_utf8(bytes).map_err(|_| Error::Parse {
-                path: path.display().to_string(),
-                message: "not UTF-8 text (a scene file is TOML)".into(),
-            })?;
-            let mut scene = Scene::from_toml(&text, &path.display().to_string())?;
-            // Files a scene names (heightmaps) are relative to the scene file.
-            scene.resolve_paths(path.parent().unwrap_or(std::path::Path::new("")));
-            Ok(scene)
-        }
+        (None, Some(path)) => Scene::load(path),
         (None, None) => unreachable!("clap requires one of --preset and --scene"),
     }
 }
@@ -158,17 +136,6 @@ pub fn group_digits(x: f64) -> String {
         out.insert(0, '-');
     }
     out
-}
-
-/// A rayon pool with `threads` workers (0 = one per core).
-pub fn thread_pool(threads: u32) -> Result<rayon::ThreadPool> {
-    if threads > MAX_THREADS {
-        return Err(Error::out_of_range("--threads", threads, format!("[0, {MAX_THREADS}]")));
-    }
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads as usize)
-        .build()
-        .map_err(|e| Error::invalid("--threads", format!("cannot start {threads} threads: {e}")))
 }
 
 /// Fails early, before any work, if the directory `--out` would be written into does not exist.

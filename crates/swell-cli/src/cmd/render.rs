@@ -213,7 +213,7 @@ fn run_mesh(a: &RenderArgs) -> Result<()> {
         Some(path) => read_light(path)?,
         None => MeshLight::default(),
     };
-    let text = read_text(obj, swell::limits::MAX_OBJ_BYTES, "MAX_OBJ_BYTES")?;
+    let text = read_text(obj, swell::mesh::MAX_OBJ_BYTES, "MAX_OBJ_BYTES")?;
     let mesh = parse_obj(&text, &obj.display().to_string())?;
     let pool = thread_pool(a.threads.unwrap_or(0))?;
     let mut renderer = MeshRenderer::new();

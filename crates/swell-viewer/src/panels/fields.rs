@@ -239,3 +239,29 @@ pub fn seed(ui: &mut Ui, label: &str, value: &mut u64) -> bool {
     ui.end_row();
     changed
 }
+
+#[cfg(test)]
+mod tests {
+    use swell::scene::Shading;
+    use swell::spectrum::{SpectrumKind, SpreadingFunction};
+    use swell::water::Edges;
+
+    use super::*;
+
+    /// Issue 21: every member of every closed set the panels offer is in its menu, under the name
+    /// the scene format reads.
+    #[test]
+    fn menus_list_every_member_of_every_closed_set_by_its_scene_name() {
+        fn check<T: ClosedSet>() {
+            let options = member_options::<T>();
+            assert_eq!(options.iter().map(|(m, _)| *m).collect::<Vec<_>>(), T::ALL);
+            for (m, name) in options {
+                assert_eq!(T::parse("menu", name).unwrap(), m);
+            }
+        }
+        check::<Shading>();
+        check::<SpectrumKind>();
+        check::<SpreadingFunction>();
+        check::<Edges>();
+    }
+}

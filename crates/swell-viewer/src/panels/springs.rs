@@ -7,7 +7,7 @@
 
 use eframe::egui::{self, Ui};
 use swell::error::{check_non_negative, check_positive};
-use swell::water::{DropSchedule, Edges, SpringMeshParams};
+use swell::water::{DropSchedule, SpringMeshParams};
 use swell::Result;
 
 use super::{fields, keys};
@@ -79,7 +79,7 @@ pub fn show(ui: &mut Ui, p: &mut SpringMeshParams, click: &mut ClickDrop) -> boo
         ui.end_row();
         changed |= fields::number(ui, "spacing", &mut p.spacing, 0.005, " m");
         changed |= fields::number(ui, "rest length ratio", &mut p.rest_length_ratio, 0.005, "");
-        changed |= fields::choice(ui, "edges", &mut p.edges, &[(Edges::Fixed, "fixed"), (Edges::Free, "free")]);
+        changed |= fields::member(ui, "edges", &mut p.edges);
         changed |= fields::flag(ui, "vertical only", &mut p.vertical_only);
         changed |= fields::number(ui, "warm-up", &mut p.warm_up, 0.5, " s");
         keys::edits("water", &["lattice", "spacing", "rest_length_ratio", "edges", "vertical_only", "warm_up"]);

@@ -81,25 +81,55 @@ pub fn setup<V: Varying>(
     height: u32,
     cull_back: bool,
 ) -> Option<SetupTriangle<V>> {
-    let w = tri.map(|v| to_window(v.position, width, height));
+    let (t, swapped) =
+        setup_clip_geometry([tri[0].position, tri[1].position, tri[2].position], primitive, width, height, cull_back)?;
+    Some(t.with_varying([tri[0].varying, tri[1].varying, tri[2].varying], swapped))
+}
+
+/// [`setup`] without the varyings: the triangle, and whether its vertices 1 and 2 were swapped
+/// to wind it clockwise (the caller's varyings follow the same order).
+pub(super) fn setup_clip_geometry(
+    p: [Vec4; 3],
+    primitive: u32,
+    width: u32,
+    height: u32,
+    cull_back: bool,
+) -> Option<(SetupTriangle<()>, bool)> {
+    let w = p.map(|p| to_window(p, width, height));
     // A non-finite vertex (w = 0, or NaN from a broken model) would cast to an arbitrary fixed-point
     // coordinate; dropping the triangle keeps NaN out of the framebuffer.
     if !w.iter().all(|v| v.z.is_finite() && v.inv_w.is_finite()) {
         return None;
     }
-    setup_window(&w, [tri[0].varying, tri[1].varying, tri[2].varying], primitive, width, height, cull_back)
+    setup_geometry(&w, primitive, width, height, cull_back)
 }
 
 /// [`setup`] for vertices already in window space ([`to_window`]).
 #[inline]
 pub fn setup_window<V: Varying>(
     w: &[WindowVertex; 3],
-    mut varying: [V; 3],
+    varying: [V; 3],
     primitive: u32,
     width: u32,
     height: u32,
     cull_back: bool,
 ) -> Option<SetupTriangle<V>> {
+    let (t, swapped) = setup_geometry(w, primitive, width, height, cull_back)?;
+    Some(t.with_varying(varying, swapped))
+}
+
+/// [`setup_window`] without the varyings: the triangle, and whether its vertices 1 and 2 were
+/// swapped. The draw call keeps the varyings apart, by vertex index: a triangle record then
+/// takes 72 bytes whatever the varying (108 with an RGB colour), and writing the records at setup
+/// and reading them back per band is memory traffic that dominates dense meshes.
+#[inline]
+pub(super) fn setup_geometry(
+    w: &[WindowVertex; 3],
+    primitive: u32,
+    width: u32,
+    height: u32,
+    cull_back: bool,
+) -> Option<(SetupTriangle<()>, bool)> {
     let mut x = [w[0].x, w[1].x, w[2].x];
     let mut y = [w[0].y, w[1].y, w[2].y];
     // Bounds first: most triangles of a dense mesh that miss every pixel centre leave here.
@@ -124,26 +154,40 @@ pub fn setup_window<V: Varying>(
     }
     let mut z = [w[0].z, w[1].z, w[2].z];
     let mut inv_w = [w[0].inv_w, w[1].inv_w, w[2].inv_w];
-    if area2 < 0 {
+    let swapped = area2 < 0;
+    if swapped {
         x.swap(1, 2);
         y.swap(1, 2);
         z.swap(1, 2);
         inv_w.swap(1, 2);
-        varying.swap(1, 2);
     }
-    Some(SetupTriangle {
+    let t = SetupTriangle {
         x,
         y,
         z,
         inv_w,
-        varying,
+        varying: [(); 3],
         inv_area: 1.0 / area2.abs() as f32,
         primitive,
         min_x: x0 as u32,
         max_x: x1 as u32,
         min_y: y0 as u32,
         max_y: y1 as u32,
-    })
+    };
+    Some((t, swapped))
+}
+
+impl SetupTriangle<()> {
+    /// This triangle carrying `varying` (in the caller's vertex order; `swapped` as
+    /// [`setup_geometry`] returned it).
+    #[inline]
+    fn with_varying<V>(&self, mut varying: [V; 3], swapped: bool) -> SetupTriangle<V> {
+        if swapped {
+            varying.swap(1, 2);
+        }
+        let Self { x, y, z, inv_w, inv_area, primitive, min_x, max_x, min_y, max_y, .. } = *self;
+        SetupTriangle { x, y, z, inv_w, varying, inv_area, primitive, min_x, max_x, min_y, max_y }
+    }
 }
 
 /// Whether edge a -> b is a top or left edge for triangles wound clockwise on screen (y down),

@@ -3,6 +3,7 @@
 
 mod camera;
 mod light;
+mod memory_estimate;
 mod presets;
 mod render_settings;
 #[allow(clippy::module_inception)]

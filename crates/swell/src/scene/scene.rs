@@ -135,6 +135,40 @@ impl Scene {
         Ok(scene)
     }
 
+    /// Reads, parses and validates the scene file `path`: the one loader of the CLI, the viewer and
+    /// the Python package.
+    ///
+    /// At most [`crate::limits::MAX_SCENE_BYTES`] are read (one byte past it is enough to refuse a
+    /// huge file or `/dev/zero`), nesting is bounded before parsing ([`Scene::from_toml`]), and
+    /// relative file paths in the scene (heightmaps, water textures) are resolved against the
+    /// scene file's directory, made absolute so that the scene still finds them once saved
+    /// elsewhere (the viewer's "save as"). Errors name the file.
+    pub fn load(path: &std::path::Path) -> Result<Self> {
+        use std::io::Read;
+        let max = crate::limits::MAX_SCENE_BYTES;
+        let source = path.display().to_string();
+        let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+        let mut bytes = Vec::new();
+        file.take(max + 1).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+        if bytes.len() as u64 > max {
+            return Err(Error::Parse {
+                path: source,
+                message: format!("over the scene-file limit of {max} bytes (MAX_SCENE_BYTES)"),
+            });
+        }
+        let text = String::from_utf8(bytes).map_err(|_| Error::Parse {
+            path: source.clone(),
+            message: "not UTF-8 text (a scene file is TOML)".into(),
+        })?;
+        let mut scene = Scene::from_toml(&text, &source)?;
+        let dir = path.parent().unwrap_or(std::path::Path::new(""));
+        // `absolute` only fails for an empty path or without a current directory; the relative
+        // directory then still resolves the paths for this process.
+        let dir = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+        scene.resolve_paths(&dir);
+        Ok(scene)
+    }
+
     /// Writes the scene as TOML that [`Scene::from_toml`] reads back to an equal scene.
     pub fn to_toml(&self) -> String {
         let file = SceneFile {
@@ -155,9 +189,9 @@ impl Scene {
         toml::to_string_pretty(&table).expect("a TOML table always serialises")
     }
 
-    /// Checks every value against its range; the error names the key path, value and range.
-    ///
-    /// Model parameters are checked again when the model is built ([`super::World::new`]).
+    /// Checks every value against its range, then the memory the whole scene would take, without
+    /// building a model or allocating anything large; the error names the key path, value and
+    /// range. [`super::World::new`] then builds each model once.
     pub fn validate(&self) -> Result<()> {
         if self.version != SCENE_VERSION {
             return Err(Error::out_of_range(
@@ -181,16 +215,12 @@ impl Scene {
         self.render.validate("render")?;
         if let Some(w) = &self.water {
             w.validate()?;
-            w.model.build()?;
         }
         if let Some(t) = &self.terrain {
             t.validate()?;
         }
         // Every size is in range on its own; their sum must also fit before anything is allocated.
-        crate::limits::check_memory(
-            "scene (water grid + terrain + framebuffer)",
-            crate::limits::estimate_world_bytes(self),
-        )?;
+        crate::limits::check_memory("scene (water grid + terrain + framebuffer)", self.estimate_bytes())?;
         Ok(())
     }
 

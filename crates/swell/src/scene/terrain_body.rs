@@ -5,9 +5,9 @@ use glam::{Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::TerrainMaterial;
-use super::{TerrainSpec, WaterPlacement};
+use super::TerrainSpec;
 use crate::error::Result;
-use crate::math::{GridSpec, Transform};
+use crate::math::Transform;
 use crate::mesh::SurfaceMesh;
 use crate::terrain::HeightField;
 
@@ -22,11 +22,6 @@ pub struct TerrainBody {
     pub mesh: SurfaceMesh,
     /// How it looks.
     pub material: TerrainMaterial,
-    /// Depth (m) of the bottom below the water at rest under each water vertex (rest position),
-    /// negative where the ground stands above the water, `f32::INFINITY` where no terrain lies
-    /// below (deep water). Empty when the scene has no water. Filled by [`super::World::new`]
-    /// through [`TerrainBody::measure_water_depths`].
-    pub water_depths: Vec<f32>,
     model_from_world: Mat4,
     /// World-space ground heights for transforms that tilt the field (rotation about X or Z),
     /// where a vertical world line no longer maps to a vertical model line.
@@ -52,7 +47,6 @@ impl TerrainBody {
             transform,
             mesh,
             material: spec.material,
-            water_depths: Vec::new(),
             model_from_world: transform.model_from_world(),
             tilted_ground,
         })
@@ -79,32 +73,6 @@ impl TerrainBody {
     /// water, negative on dry land, `None` outside the terrain.
     pub fn depth_at(&self, x: f32, z: f32) -> Option<f32> {
         self.ground_height(x, z).map(|g| -g)
-    }
-
-    /// Fills [`TerrainBody::water_depths`] for the rest positions of the water grid `grid` (in the
-    /// water's own frame), placed in the world by `placement`.
-    pub fn measure_water_depths(&mut self, grid: &GridSpec, placement: &WaterPlacement) {
-        let nx = grid.verts_x();
-        self.water_depths = (0..grid.vertex_count())
-            .map(|k| {
-                let r = grid.rest_position(k % nx, k / nx);
-                let w = placement.to_world(glam::Vec3::new(r.x, 0.0, r.y));
-                self.depth_at(w.x, w.z).unwrap_or(f32::INFINITY)
-            })
-            .collect();
-    }
-
-    /// Median of the finite [`TerrainBody::water_depths`] that are positive: a single depth for
-    /// wave models that take one (finite-depth dispersion). `None` if no water vertex is over
-    /// submerged terrain.
-    pub fn median_water_depth(&self) -> Option<f32> {
-        let mut d: Vec<f32> = self.water_depths.iter().copied().filter(|d| d.is_finite() && *d > 0.0).collect();
-        if d.is_empty() {
-            return None;
-        }
-        let mid = d.len() / 2;
-        let (_, m, _) = d.select_nth_unstable_by(mid, f32::total_cmp);
-        Some(*m)
     }
 }
 
@@ -242,7 +210,7 @@ mod tests {
     }
 
     #[test]
-    fn a_world_knows_the_depth_under_each_water_vertex() {
+    fn a_world_knows_the_depth_under_the_water() {
         // A pool: flat floor 0.2 m below the water (paper 002), 4 m x 4 m, under a 6 m x 6 m patch.
         let text = "version = 1\n[camera]\neye = [0.0, 5.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\
                     [water]\nmodel = 'sines'\nsize = [6.0, 6.0]\ncells = [6, 6]\n\
@@ -250,14 +218,10 @@ mod tests {
         let world = crate::scene::World::new(crate::scene::Scene::from_toml(text, "t").unwrap()).unwrap();
         assert!((world.depth_at(0.5, -1.5).unwrap() - 0.2).abs() < 1e-6);
         assert_eq!(world.depth_at(2.5, 0.0), None);
-        let t = world.terrain.as_ref().unwrap();
-        assert_eq!(t.water_depths.len(), 49);
         // Water vertices at x, z in {-3, ..., 3}: inside |x|, |z| <= 2 the floor is 0.2 m down.
-        for (k, d) in t.water_depths.iter().enumerate() {
-            let (x, z) = ((k % 7) as f32 - 3.0, (k / 7) as f32 - 3.0);
+        for (x, z) in (0..49).map(|k| ((k % 7) as f32 - 3.0, (k / 7) as f32 - 3.0)) {
             let inside = x.abs() <= 2.0 && z.abs() <= 2.0;
-            assert_eq!(*d, if inside { 0.2 } else { f32::INFINITY }, "vertex ({x}, {z})");
+            assert_eq!(world.depth_at(x, z), inside.then_some(0.2), "vertex ({x}, {z})");
         }
-        assert_eq!(t.median_water_depth(), Some(0.2));
     }
 }

@@ -23,19 +23,13 @@ use serde::{Deserialize, Serialize};
 
 use super::water_spec::deserialize_at;
 use super::TerrainMaterial;
-use crate::error::{check_count, check_finite_vec, check_positive, check_range, Error, Result};
+use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
 use crate::math::Transform;
 use crate::terrain::{
-    channel, check_diamond_square_size, diamond_square, flat, hills, load_heightmap, noise_terrain, random_average,
-    slope, ChannelParams, DiamondSquareParams, FlatParams, HeightField, HeightmapOverrides, HillsParams,
-    NoiseTerrainParams, RandomAverageParams, SlopeParams, MAX_TERRAIN_SIZE,
+    load_heightmap, ChannelParams, DiamondSquareParams, FlatParams, GeneratorParams, HeightField, HeightmapOverrides,
+    HillsParams, NoiseTerrainParams, RandomAverageParams, SlopeParams,
 };
-
-/// Vertices per side when `terrain.size` is not given.
-pub const DEFAULT_TERRAIN_SIZE: u32 = 257;
-
-/// Extent (m) when `terrain.extent` is not given (and, for heightmaps, not in the sidecar).
-pub const DEFAULT_TERRAIN_EXTENT: Vec2 = Vec2::new(200.0, 200.0);
+pub use crate::terrain::{DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE};
 
 /// A heightmap file: `generator = "heightmap"`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -51,80 +45,105 @@ pub struct HeightmapSpec {
     pub height_offset: Option<f32>,
 }
 
-/// The generator and its parameters, selected by `terrain.generator`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "generator", rename_all = "kebab-case")]
-pub enum TerrainGenerator {
-    /// `generator = "diamond-square"` (paper 001 §2.1).
-    DiamondSquare(DiamondSquareParams),
-    /// `generator = "random-average"` (paper 001 §1.3.1).
-    RandomAverage(RandomAverageParams),
-    /// `generator = "noise"` (paper 001 §1.3.2).
-    Noise(NoiseTerrainParams),
-    /// `generator = "hills"` (paper 001 §1.3.3).
-    Hills(HillsParams),
-    /// `generator = "flat"`.
-    Flat(FlatParams),
-    /// `generator = "slope"`.
-    Slope(SlopeParams),
-    /// `generator = "heightmap"`.
-    Heightmap(HeightmapSpec),
-    /// `generator = "channel"` (paper 004's river between banks).
-    Channel(ChannelParams),
-}
-
-/// The names `terrain.generator` accepts.
-pub const TERRAIN_GENERATORS: &[&str] =
-    &["diamond-square", "random-average", "noise", "hills", "flat", "slope", "heightmap", "channel"];
-
-impl TerrainGenerator {
-    /// Reads the generator's keys (everything in `[terrain]` but the common keys).
-    pub fn from_table(generator: &str, rest: toml::Table, source: &str) -> Result<Self> {
-        Ok(match generator {
-            "diamond-square" => Self::DiamondSquare(deserialize_at(rest, "terrain", source)?),
-            "random-average" => Self::RandomAverage(deserialize_at(rest, "terrain", source)?),
-            "noise" => Self::Noise(deserialize_at(rest, "terrain", source)?),
-            "hills" => Self::Hills(deserialize_at(rest, "terrain", source)?),
-            "flat" => Self::Flat(deserialize_at(rest, "terrain", source)?),
-            "slope" => Self::Slope(deserialize_at(rest, "terrain", source)?),
-            "heightmap" => Self::Heightmap(deserialize_at(rest, "terrain", source)?),
-            "channel" => Self::Channel(deserialize_at(rest, "terrain", source)?),
-            other => {
-                return Err(Error::Parse {
-                    path: source.to_string(),
-                    message: format!(
-                        "terrain.generator = \"{other}\" is not a generator; valid: {}",
-                        TERRAIN_GENERATORS.join(", ")
-                    ),
-                })
-            }
-        })
+/// A heightmap file is a generator like the others: its size comes from the image.
+impl GeneratorParams for HeightmapSpec {
+    fn validate(&self, key: &str) -> Result<()> {
+        if self.path.as_os_str().is_empty() {
+            return Err(Error::invalid(format!("{key}.path"), "is empty; give the heightmap PNG's path"));
+        }
+        if let Some(s) = self.height_scale {
+            check_positive(&format!("{key}.height_scale"), s)?;
+        }
+        if let Some(o) = self.height_offset {
+            check_range(&format!("{key}.height_offset"), o, -1.0e6, 1.0e6)?;
+        }
+        Ok(())
     }
 
-    /// Checks the generator's parameters, naming keys under `terrain`.
-    pub fn validate(&self) -> Result<()> {
-        let key = "terrain";
-        match self {
-            Self::DiamondSquare(p) => p.validate(key),
-            Self::RandomAverage(p) => p.validate(key),
-            Self::Noise(p) => p.validate(key),
-            Self::Hills(p) => p.validate(key),
-            Self::Flat(p) => p.validate(key),
-            Self::Slope(p) => p.validate(key),
-            Self::Channel(p) => p.validate(key),
-            Self::Heightmap(h) => {
-                if h.path.as_os_str().is_empty() {
-                    return Err(Error::invalid("terrain.path", "is empty; give the heightmap PNG's path"));
-                }
-                if let Some(s) = h.height_scale {
-                    check_positive("terrain.height_scale", s)?;
-                }
-                if let Some(o) = h.height_offset {
-                    check_range("terrain.height_offset", o, -1.0e6, 1.0e6)?;
-                }
-                Ok(())
+    fn check_size(&self, key: &str, size: u32) -> Result<()> {
+        Err(Error::invalid(key, format!("{size} given, but a heightmap takes its size from the image; remove the key")))
+    }
+
+    fn generate(&self, _size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        let overrides =
+            HeightmapOverrides { height_scale: self.height_scale, height_offset: self.height_offset, extent };
+        load_heightmap(&self.path, overrides)
+            // A file that cannot be read is named with the key that names it.
+            .map_err(|e| match e {
+                Error::Io { .. } | Error::Image { .. } => Error::invalid("terrain.path", e.to_string()),
+                other => other,
+            })
+    }
+}
+
+/// Declares the terrain generators: one line each, `Variant = "name" => ParamsType`, with the
+/// variant's doc. Generates [`TerrainGenerator`], [`TERRAIN_GENERATORS`], parsing by name and the
+/// dispatch to each generator's [`GeneratorParams`].
+macro_rules! terrain_generators {
+    ($( $(#[$doc:meta])* $variant:ident = $name:literal => $params:ty ),+ $(,)?) => {
+        /// The generator and its parameters, selected by `terrain.generator`.
+        #[derive(Clone, Debug, PartialEq, Serialize)]
+        #[serde(tag = "generator")]
+        pub enum TerrainGenerator {
+            $( $(#[$doc])* #[serde(rename = $name)] $variant($params), )+
+        }
+
+        /// The names `terrain.generator` accepts.
+        pub const TERRAIN_GENERATORS: &[&str] = &[$($name),+];
+
+        impl TerrainGenerator {
+            /// The generator's parameters behind their common interface.
+            pub fn params(&self) -> &dyn GeneratorParams {
+                match self { $(Self::$variant(p) => p,)+ }
+            }
+
+            /// The `terrain.generator` name of this generator.
+            pub fn name(&self) -> &'static str {
+                match self { $(Self::$variant(_) => $name,)+ }
+            }
+
+            /// Reads the generator's keys (everything in `[terrain]` but the common keys).
+            pub fn from_table(generator: &str, rest: toml::Table, source: &str) -> Result<Self> {
+                Ok(match generator {
+                    $($name => Self::$variant(deserialize_at(rest, "terrain", source)?),)+
+                    other => {
+                        return Err(Error::Parse {
+                            path: source.to_string(),
+                            message: format!(
+                                "terrain.generator = \"{other}\" is not a generator; valid: {}",
+                                TERRAIN_GENERATORS.join(", ")
+                            ),
+                        })
+                    }
+                })
             }
         }
+    };
+}
+
+terrain_generators! {
+    /// `generator = "diamond-square"` (paper 001 §2.1).
+    DiamondSquare = "diamond-square" => DiamondSquareParams,
+    /// `generator = "random-average"` (paper 001 §1.3.1).
+    RandomAverage = "random-average" => RandomAverageParams,
+    /// `generator = "noise"` (paper 001 §1.3.2).
+    Noise = "noise" => NoiseTerrainParams,
+    /// `generator = "hills"` (paper 001 §1.3.3).
+    Hills = "hills" => HillsParams,
+    /// `generator = "flat"`.
+    Flat = "flat" => FlatParams,
+    /// `generator = "slope"`.
+    Slope = "slope" => SlopeParams,
+    /// `generator = "heightmap"`: a PNG heightmap file and its sidecar.
+    Heightmap = "heightmap" => HeightmapSpec,
+    /// `generator = "channel"` (paper 004's river between banks).
+    Channel = "channel" => ChannelParams,
+}
+
+impl TerrainGenerator {
+    /// Checks the generator's parameters, naming keys under `terrain`.
+    pub fn validate(&self) -> Result<()> {
+        self.params().validate("terrain")
     }
 }
 
@@ -205,16 +224,7 @@ impl TerrainSpec {
     /// Checks everything that does not need a file read.
     pub fn validate(&self) -> Result<()> {
         if let Some(size) = self.size {
-            match &self.generator {
-                TerrainGenerator::Heightmap(_) => {
-                    return Err(Error::invalid(
-                        "terrain.size",
-                        format!("{size} given, but a heightmap takes its size from the image; remove the key"),
-                    ))
-                }
-                TerrainGenerator::DiamondSquare(_) => check_diamond_square_size("terrain.size", size)?,
-                _ => check_count("terrain.size", size, 2, MAX_TERRAIN_SIZE)?,
-            }
+            self.generator.params().check_size("terrain.size", size)?;
         }
         if let Some(e) = self.extent {
             check_finite_vec("terrain.extent", &e.to_array())?;
@@ -229,30 +239,7 @@ impl TerrainSpec {
     /// Runs the generator (or loads the heightmap) and returns the field in model space.
     pub fn build(&self) -> Result<HeightField> {
         self.validate()?;
-        let size = self.size.unwrap_or(DEFAULT_TERRAIN_SIZE);
-        let extent = self.extent.unwrap_or(DEFAULT_TERRAIN_EXTENT);
-        match &self.generator {
-            TerrainGenerator::DiamondSquare(p) => diamond_square(size, extent, p),
-            TerrainGenerator::RandomAverage(p) => random_average(size, extent, p),
-            TerrainGenerator::Noise(p) => noise_terrain(size, extent, p),
-            TerrainGenerator::Hills(p) => hills(size, extent, p),
-            TerrainGenerator::Flat(p) => flat(size, extent, p),
-            TerrainGenerator::Slope(p) => slope(size, extent, p),
-            TerrainGenerator::Channel(p) => channel(size, extent, p),
-            TerrainGenerator::Heightmap(h) => load_heightmap(
-                &h.path,
-                HeightmapOverrides {
-                    height_scale: h.height_scale,
-                    height_offset: h.height_offset,
-                    extent: self.extent,
-                },
-            )
-            // A file that cannot be read is named with the key that names it.
-            .map_err(|e| match e {
-                Error::Io { .. } | Error::Image { .. } => Error::invalid("terrain.path", e.to_string()),
-                other => other,
-            }),
-        }
+        self.generator.params().generate(self.size.unwrap_or(DEFAULT_TERRAIN_SIZE), self.extent)
     }
 
     /// Makes a relative heightmap path relative to `dir` (the scene file's directory).

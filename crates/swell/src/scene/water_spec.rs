@@ -23,12 +23,11 @@ use super::water_extent::{LodSettings, WaterExtent};
 use super::water_placement::WaterPlacement;
 use crate::error::{check_finite_vec, Error, Result};
 use crate::math::GridSpec;
-use crate::spectrum::LoopFit;
 use crate::water::{
-    wave_set, Airy, AiryParams, GerstnerTessendorf, NoiseParams, NoiseWaves, RadialWave, RadialWaveParams, River,
-    RiverParams, SpringMesh, SpringMeshParams, SteepSines, SteepSinesParams, TessendorfParams, WaveSetParams,
+    AiryParams, FftOceanParams, ModelParams, NoiseParams, RadialWaveParams, RiverParams, SpringMeshParams,
+    SteepSinesParams, TessendorfParams, WaveModel, WaveSetParams,
 };
-use crate::water::{FftOcean, FftOceanParams, Gerstner, GerstnerWave, SineWave, SumOfSines, WaveModel};
+pub use crate::water::{GerstnerSpec, SinesSpec};
 
 /// The water patch and its sampling grid.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -104,75 +103,84 @@ impl WaterSurface {
 
 pub use super::water_material::WaterMaterial;
 
-/// Gerstner waves (paper 000): `model = "gerstner"` and a `[[water.waves]]` list.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct GerstnerSpec {
-    /// The waves, 0 to 64 of them.
-    #[serde(default)]
-    pub waves: Vec<GerstnerWave>,
+/// Declares the water models: one line each, `Variant = "name" => ParamsType`, with the
+/// variant's doc. Generates [`WaterModelSpec`], [`WATER_MODELS`], parsing by name and the dispatch
+/// to each model's [`ModelParams`]: the compiler checks that every model is in every one of them.
+macro_rules! water_models {
+    ($( $(#[$doc:meta])* $variant:ident = $name:literal => $params:ty ),+ $(,)?) => {
+        /// The wave model and its parameters, selected by `water.model`.
+        #[derive(Clone, Debug, PartialEq, Serialize)]
+        #[serde(tag = "model")]
+        pub enum WaterModelSpec {
+            $( $(#[$doc])* #[serde(rename = $name)] $variant($params), )+
+        }
+
+        /// The names `water.model` accepts, in the order the viewer's menu lists them.
+        pub const WATER_MODELS: &[&str] = &[$($name),+];
+
+        impl WaterModelSpec {
+            /// The model's parameters behind their common interface.
+            pub fn params(&self) -> &dyn ModelParams {
+                match self { $(WaterModelSpec::$variant(p) => p,)+ }
+            }
+
+            /// The `water.model` name of this spec.
+            pub fn name(&self) -> &'static str {
+                match self { $(WaterModelSpec::$variant(_) => $name,)+ }
+            }
+
+            /// The model called `name` with its default parameters, `None` for an unknown name.
+            pub fn default_for(name: &str) -> Option<Self> {
+                match name { $($name => Some(WaterModelSpec::$variant(<$params>::default())),)+ _ => None }
+            }
+
+            fn from_table(model: &str, rest: toml::Table, source: &str) -> Result<Self> {
+                Ok(match model {
+                    $($name => WaterModelSpec::$variant(deserialize_at(rest, "water", source)?),)+
+                    other => {
+                        return Err(Error::Parse {
+                            path: source.to_string(),
+                            message: format!(
+                                "water.model = \"{other}\" is not a model; valid: {}",
+                                WATER_MODELS.join(", ")
+                            ),
+                        })
+                    }
+                })
+            }
+        }
+    };
 }
 
-/// A plain sum of sines: `model = "sines"` and a `[[water.waves]]` list.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SinesSpec {
-    /// The waves, 0 to 64 of them.
-    #[serde(default)]
-    pub waves: Vec<SineWave>,
-}
-
-/// The wave model and its parameters, selected by `water.model`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "model", rename_all = "kebab-case")]
-pub enum WaterModelSpec {
-    /// `model = "gerstner"`.
-    Gerstner(GerstnerSpec),
-    /// `model = "sines"`.
-    Sines(SinesSpec),
+water_models! {
+    /// `model = "gerstner"`: Gerstner waves (paper 000), a `[[water.waves]]` list.
+    Gerstner = "gerstner" => GerstnerSpec,
+    /// `model = "sines"`: a plain sum of sines, a `[[water.waves]]` list.
+    Sines = "sines" => SinesSpec,
     /// `model = "tessendorf"`: Gerstner waves in Tessendorf's form with dispersion (paper 003).
-    Tessendorf(TessendorfParams),
+    Tessendorf = "tessendorf" => TessendorfParams,
     /// `model = "wave-set"`: Gerstner waves generated from wind, spread and medians (paper 000 §2.4).
-    WaveSet(WaveSetParams),
+    WaveSet = "wave-set" => WaveSetParams,
     /// `model = "airy"`: linear sum of sines with dispersion (paper 000 eqs. 2-3).
-    Airy(AiryParams),
+    Airy = "airy" => AiryParams,
     /// `model = "steep-sines"`: paper 003's `A ((sin S + 1) / 2)^k`.
-    SteepSines(SteepSinesParams),
+    SteepSines = "steep-sines" => SteepSinesParams,
     /// `model = "radial"`: paper 002's circular wave.
-    Radial(RadialWaveParams),
+    Radial = "radial" => RadialWaveParams,
     /// `model = "noise"`: drifting Perlin fBm (paper 003 §1.1.1).
-    Noise(NoiseParams),
+    Noise = "noise" => NoiseParams,
     /// `model = "springs"`: Hooke spring lattice (paper 003 §1.1.3).
-    Springs(SpringMeshParams),
+    Springs = "springs" => SpringMeshParams,
     /// `model = "river"`: paper 004's river between oscillating banks.
-    River(RiverParams),
+    River = "river" => RiverParams,
     /// `model = "fft"`: the spectral (Tessendorf) ocean; its keys sit in `[water]`.
-    Fft(FftOceanParams),
+    Fft = "fft" => FftOceanParams,
 }
-
-/// The names `water.model` accepts.
-pub const WATER_MODELS: &[&str] = &[
-    "gerstner",
-    "sines",
-    "tessendorf",
-    "wave-set",
-    "airy",
-    "steep-sines",
-    "radial",
-    "noise",
-    "springs",
-    "river",
-    "fft",
-];
 
 impl WaterModelSpec {
     /// The period (s) after which the model repeats exactly, if it was given one.
     pub fn loop_period(&self) -> Option<f64> {
-        match self {
-            WaterModelSpec::Tessendorf(p) => p.loop_period.map(f64::from),
-            WaterModelSpec::Fft(p) => p.loop_period.map(f64::from),
-            _ => None,
-        }
+        self.params().loop_period()
     }
 
     /// A warning when the loop period is too short for the sea (`spectrum/loop_period.rs`):
@@ -180,29 +188,7 @@ impl WaterModelSpec {
     /// [`crate::spectrum::MAX_LOOP_SHIFT`]. `None` without a loop or when the loop fits. Assumes
     /// the parameters are valid.
     pub fn loop_warning(&self) -> Option<String> {
-        let key = "water.loop_period";
-        match self {
-            WaterModelSpec::Tessendorf(p) => {
-                let period = f64::from(p.loop_period?);
-                let omegas: Vec<f64> = p
-                    .waves
-                    .iter()
-                    .map(|w| f64::from(p.dispersion.omega(std::f32::consts::TAU / w.wavelength)))
-                    .collect();
-                let longest = omegas.iter().copied().filter(|w| *w > 0.0).fold(f64::INFINITY, f64::min);
-                if !longest.is_finite() {
-                    return None;
-                }
-                LoopFit::new(period, std::f64::consts::TAU / longest, omegas).warning(key)
-            }
-            WaterModelSpec::Fft(p) => {
-                let p = p.resolved();
-                let period = f64::from(p.loop_period?);
-                let spectrum = p.spectrum();
-                LoopFit::for_spectrum(period, std::f64::consts::TAU / spectrum.peak_period()).warning(key)
-            }
-            _ => None,
-        }
+        self.params().loop_warning()
     }
 
     /// Fixed time steps a time-stepped model takes from its start to reach time `t` (s), its
@@ -210,66 +196,36 @@ impl WaterModelSpec {
     /// CLI shows progress and refuses more than [`crate::water::MAX_STEPS_PER_ADVANCE`] up front).
     /// `None` for the models that are functions of time.
     pub fn steps_to(&self, t: f64) -> Option<f64> {
-        match self {
-            WaterModelSpec::Springs(p) => Some(((t + f64::from(p.warm_up)) / f64::from(p.time_step)).floor().max(0.0)),
-            _ => None,
-        }
+        self.params().steps_to(t)
     }
 
     /// The time (s) a time-stepped model reaches after `steps` of its fixed steps from its start,
     /// its warm-up subtracted: the inverse of [`WaterModelSpec::steps_to`]. `None` for the models
     /// that are functions of time.
     pub fn time_after_steps(&self, steps: f64) -> Option<f64> {
-        match self {
-            WaterModelSpec::Springs(p) => Some(steps * f64::from(p.time_step) - f64::from(p.warm_up)),
-            _ => None,
-        }
+        self.params().time_after_steps(steps)
     }
 
     /// Whether the built model keeps a state that a click or a stone can disturb
     /// ([`WaveModel::disturb`] returns true): the spring mesh. Closed-form models are functions
     /// of time alone. Lets a caller (the viewer) decide without building the model.
     pub fn takes_disturbances(&self) -> bool {
-        matches!(self, WaterModelSpec::Springs(_))
+        self.params().takes_disturbances()
+    }
+
+    /// Checks the model's parameters without building it (keys named under `water`).
+    pub fn validate(&self) -> Result<()> {
+        self.params().validate()
+    }
+
+    /// Bytes the built model allocates for its own state, an estimate ([`ModelParams::estimate_bytes`]).
+    pub fn estimate_bytes(&self) -> u64 {
+        self.params().estimate_bytes()
     }
 
     /// Builds the model, validating its parameters.
     pub fn build(&self) -> Result<Box<dyn WaveModel>> {
-        Ok(match self {
-            WaterModelSpec::Gerstner(s) => Box::new(Gerstner::new(s.waves.clone())?),
-            WaterModelSpec::Sines(s) => Box::new(SumOfSines::new(s.waves.clone())?),
-            WaterModelSpec::Tessendorf(p) => Box::new(GerstnerTessendorf::new(p.clone())?),
-            WaterModelSpec::WaveSet(p) => Box::new(Gerstner::new(wave_set(p)?)?),
-            WaterModelSpec::Airy(p) => Box::new(Airy::new(p.clone())?),
-            WaterModelSpec::SteepSines(p) => Box::new(SteepSines::new(p.clone())?),
-            WaterModelSpec::Radial(p) => Box::new(RadialWave::new(*p)?),
-            WaterModelSpec::Noise(p) => Box::new(NoiseWaves::new(*p)?),
-            WaterModelSpec::Springs(p) => Box::new(SpringMesh::new(*p)?),
-            WaterModelSpec::River(p) => Box::new(River::new(*p)?),
-            WaterModelSpec::Fft(p) => Box::new(FftOcean::new(p)?),
-        })
-    }
-
-    fn from_table(model: &str, rest: toml::Table, source: &str) -> Result<Self> {
-        Ok(match model {
-            "gerstner" => WaterModelSpec::Gerstner(deserialize_at(rest, "water", source)?),
-            "sines" => WaterModelSpec::Sines(deserialize_at(rest, "water", source)?),
-            "tessendorf" => WaterModelSpec::Tessendorf(deserialize_at(rest, "water", source)?),
-            "wave-set" => WaterModelSpec::WaveSet(deserialize_at(rest, "water", source)?),
-            "airy" => WaterModelSpec::Airy(deserialize_at(rest, "water", source)?),
-            "steep-sines" => WaterModelSpec::SteepSines(deserialize_at(rest, "water", source)?),
-            "radial" => WaterModelSpec::Radial(deserialize_at(rest, "water", source)?),
-            "noise" => WaterModelSpec::Noise(deserialize_at(rest, "water", source)?),
-            "springs" => WaterModelSpec::Springs(deserialize_at(rest, "water", source)?),
-            "river" => WaterModelSpec::River(deserialize_at(rest, "water", source)?),
-            "fft" => WaterModelSpec::Fft(deserialize_at(rest, "water", source)?),
-            other => {
-                return Err(Error::Parse {
-                    path: source.to_string(),
-                    message: format!("water.model = \"{other}\" is not a model; valid: {}", WATER_MODELS.join(", ")),
-                })
-            }
-        })
+        self.params().build()
     }
 }
 
@@ -330,7 +286,7 @@ impl WaterSpec {
         t
     }
 
-    /// Checks everything that does not need the model built.
+    /// Checks every key, the model's included, without building anything.
     pub fn validate(&self) -> Result<()> {
         self.surface.grid()?;
         self.surface.placement()?;
@@ -338,7 +294,8 @@ impl WaterSpec {
         if let Some(e) = self.surface.extent {
             e.validate(&self.model)?;
         }
-        self.material.validate("water.material")
+        self.material.validate("water.material")?;
+        self.model.validate()
     }
 }
 

@@ -62,15 +62,10 @@ impl World {
     /// reuse these buffers).
     pub fn new(scene: Scene) -> Result<Self> {
         scene.validate()?;
-        // Terrain first: the depth under the water is known before the water model is built
-        // (`TerrainBody::median_water_depth` for models that take one depth).
-        let mut terrain = match &scene.terrain {
+        let terrain = match &scene.terrain {
             Some(spec) => Some(TerrainBody::new(spec)?),
             None => None,
         };
-        if let (Some(t), Some(w)) = (&mut terrain, &scene.water) {
-            t.measure_water_depths(&w.surface.grid()?, &w.surface.placement()?);
-        }
         let water = match &scene.water {
             Some(spec) => {
                 let model = spec.model.build()?;

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
+use super::{GeneratorParams, DEFAULT_TERRAIN_EXTENT};
 use crate::error::{check_count, check_finite_vec, check_range, Error, Result};
 
 /// A flat floor; `[terrain]` keys for `generator = "flat"`.
@@ -86,6 +87,26 @@ pub fn slope(size: u32, extent: Vec2, p: &SlopeParams) -> Result<HeightField> {
         let t = ((Vec2::new(x, z).dot(d) + reach) / (2.0 * reach)).clamp(0.0, 1.0);
         p.start_height + (p.end_height - p.start_height) * t.powf(p.exponent)
     })
+}
+
+impl GeneratorParams for FlatParams {
+    fn validate(&self, key: &str) -> Result<()> {
+        FlatParams::validate(self, key)
+    }
+
+    fn generate(&self, size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        flat(size, extent.unwrap_or(DEFAULT_TERRAIN_EXTENT), self)
+    }
+}
+
+impl GeneratorParams for SlopeParams {
+    fn validate(&self, key: &str) -> Result<()> {
+        SlopeParams::validate(self, key)
+    }
+
+    fn generate(&self, size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        slope(size, extent.unwrap_or(DEFAULT_TERRAIN_EXTENT), self)
+    }
 }
 
 #[cfg(test)]

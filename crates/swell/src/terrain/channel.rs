@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
+use super::{GeneratorParams, DEFAULT_TERRAIN_EXTENT};
 use crate::error::{check_count, check_finite_vec, check_non_negative, check_positive, check_range, Error, Result};
 
 /// Parameters of a carved channel; `[terrain]` keys for `generator = "channel"`.
@@ -78,6 +79,16 @@ pub fn channel(size: u32, extent: Vec2, p: &ChannelParams) -> Result<HeightField
     check_count("terrain.size", size, 2, MAX_TERRAIN_SIZE)?;
     p.validate("terrain")?;
     HeightField::from_fn(size, size, extent, |x, z| p.height_at(x, z))
+}
+
+impl GeneratorParams for ChannelParams {
+    fn validate(&self, key: &str) -> Result<()> {
+        ChannelParams::validate(self, key)
+    }
+
+    fn generate(&self, size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        channel(size, extent.unwrap_or(DEFAULT_TERRAIN_EXTENT), self)
+    }
 }
 
 #[cfg(test)]

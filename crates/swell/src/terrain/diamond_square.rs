@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use super::lattice_random::LatticeRandom;
 use super::smoothing::{smooth, MAX_SMOOTHING_PASSES};
+use super::{GeneratorParams, DEFAULT_TERRAIN_EXTENT};
 use crate::error::{check_count, check_finite_vec, check_non_negative, check_range, check_seed, Error, Result};
 
 /// Largest offset range (m) a scene may ask for; ten times Everest's height above sea level.
@@ -238,6 +239,21 @@ impl Level {
                 }
             });
         }
+    }
+}
+
+impl GeneratorParams for DiamondSquareParams {
+    fn validate(&self, key: &str) -> Result<()> {
+        DiamondSquareParams::validate(self, key)
+    }
+
+    /// Diamond-square needs 2^n + 1 vertices per side.
+    fn check_size(&self, key: &str, size: u32) -> Result<()> {
+        check_diamond_square_size(key, size)
+    }
+
+    fn generate(&self, size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        diamond_square(size, extent.unwrap_or(DEFAULT_TERRAIN_EXTENT), self)
     }
 }
 

@@ -13,6 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
+use super::{GeneratorParams, DEFAULT_TERRAIN_EXTENT};
 use crate::error::check_seed;
 use crate::error::{check_count, check_positive, check_range, Error, Result};
 
@@ -89,6 +90,16 @@ pub fn hills(size: u32, extent: Vec2, p: &HillsParams) -> Result<HeightField> {
         extent,
         raw.heights().iter().map(|h| p.height * ((h - lo) / span).powf(p.flatten)).collect(),
     )
+}
+
+impl GeneratorParams for HillsParams {
+    fn validate(&self, key: &str) -> Result<()> {
+        HillsParams::validate(self, key)
+    }
+
+    fn generate(&self, size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        hills(size, extent.unwrap_or(DEFAULT_TERRAIN_EXTENT), self)
+    }
 }
 
 #[cfg(test)]

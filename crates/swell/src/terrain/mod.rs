@@ -8,6 +8,7 @@
 mod bottom;
 mod channel;
 mod diamond_square;
+mod generator_params;
 mod height_field;
 mod heightmap_io;
 mod hills;
@@ -19,6 +20,7 @@ mod smoothing;
 pub use bottom::{flat, slope, FlatParams, SlopeParams};
 pub use channel::{channel, ChannelParams};
 pub use diamond_square::{check_diamond_square_size, diamond_square, DiamondSquareParams, MAX_AMPLITUDE};
+pub use generator_params::{GeneratorParams, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE};
 pub use height_field::{HeightField, MAX_TERRAIN_SIZE};
 pub use heightmap_io::{
     decode_grey_png, load_heightmap, png_header_size, read_grey_png, read_grey_png_from, read_sidecar, sidecar_path,

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
+use super::{GeneratorParams, DEFAULT_TERRAIN_EXTENT};
 use crate::error::check_seed;
 use crate::error::{check_count, check_positive, check_range, Result};
 use crate::math::Perlin;
@@ -62,6 +63,16 @@ pub fn noise_terrain(size: u32, extent: Vec2, p: &NoiseTerrainParams) -> Result<
         let q = Vec3::new(x / p.scale, z / p.scale, 0.5);
         k * noise.fbm3_with_gradient(q, p.octaves, p.persistence, p.lacunarity).0
     })
+}
+
+impl GeneratorParams for NoiseTerrainParams {
+    fn validate(&self, key: &str) -> Result<()> {
+        NoiseTerrainParams::validate(self, key)
+    }
+
+    fn generate(&self, size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        noise_terrain(size, extent.unwrap_or(DEFAULT_TERRAIN_EXTENT), self)
+    }
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@ use super::diamond_square::MAX_AMPLITUDE;
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use super::lattice_random::lattice_random;
 use super::smoothing::{smooth, MAX_SMOOTHING_PASSES};
+use super::{GeneratorParams, DEFAULT_TERRAIN_EXTENT};
 use crate::error::check_seed;
 use crate::error::{check_count, check_range, Result};
 
@@ -53,6 +54,16 @@ pub fn random_average(size: u32, extent: Vec2, p: &RandomAverageParams) -> Resul
         (0..n * n).map(|k| p.amplitude * lattice_random(p.seed, 0, (k % n) as u32, (k / n) as u32)).collect();
     smooth(&mut h, n, n, p.passes);
     HeightField::new(size, size, extent, h)
+}
+
+impl GeneratorParams for RandomAverageParams {
+    fn validate(&self, key: &str) -> Result<()> {
+        RandomAverageParams::validate(self, key)
+    }
+
+    fn generate(&self, size: u32, extent: Option<Vec2>) -> Result<HeightField> {
+        random_average(size, extent.unwrap_or(DEFAULT_TERRAIN_EXTENT), self)
+    }
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@ use serde::{Deserialize, Serialize};
 
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{PointWave, SurfacePoint, WaveModel};
+use super::ModelParams;
 use crate::error::{check_direction, check_finite_vec, check_non_negative, check_positive, Error, Result};
 use crate::math::GridSpec;
 use crate::spectrum::Dispersion;
@@ -112,6 +113,16 @@ impl Airy {
     /// The parameters, as given.
     pub fn params(&self) -> &AiryParams {
         &self.params
+    }
+}
+
+impl ModelParams for AiryParams {
+    fn validate(&self) -> Result<()> {
+        AiryParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(Airy::new(self.clone())?))
     }
 }
 

@@ -25,6 +25,7 @@ use serde::{Deserialize, Serialize};
 
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
+use super::ModelParams;
 use crate::error::{check_direction, check_range, Error, Result};
 use crate::math::GridSpec;
 
@@ -87,7 +88,8 @@ impl Gerstner {
         Ok(Self { waves, sum })
     }
 
-    fn check(waves: &[GerstnerWave]) -> Result<()> {
+    /// Checks a wave list: at most [`MAX_GERSTNER_WAVES`], each valid (keys `water.waves[i]`).
+    pub(crate) fn check(waves: &[GerstnerWave]) -> Result<()> {
         if waves.len() > MAX_GERSTNER_WAVES {
             return Err(Error::out_of_range(
                 "water.waves",
@@ -177,6 +179,26 @@ impl Gerstner {
     /// The waves, as given.
     pub fn waves(&self) -> &[GerstnerWave] {
         &self.waves
+    }
+}
+
+/// Gerstner waves as a scene gives them (paper 000): `model = "gerstner"` and a `[[water.waves]]`
+/// list.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GerstnerSpec {
+    /// The waves, 0 to [`MAX_GERSTNER_WAVES`] of them.
+    #[serde(default)]
+    pub waves: Vec<GerstnerWave>,
+}
+
+impl ModelParams for GerstnerSpec {
+    fn validate(&self) -> Result<()> {
+        Gerstner::check(&self.waves)
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(Gerstner::new(self.waves.clone())?))
     }
 }
 

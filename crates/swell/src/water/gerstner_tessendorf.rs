@@ -27,6 +27,7 @@ use serde::{Deserialize, Serialize};
 
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
+use super::ModelParams;
 use crate::error::{check_direction, check_finite_vec, check_non_negative, check_positive, Error, Result};
 use crate::math::GridSpec;
 use crate::spectrum::{loop_time, quantize_to_period, Dispersion};
@@ -159,6 +160,31 @@ impl GerstnerTessendorf {
     /// Angular frequency (rad/s) of each wave, after dispersion and loop quantisation.
     pub fn omegas(&self) -> &[f32] {
         &self.omegas
+    }
+}
+
+impl ModelParams for TessendorfParams {
+    fn validate(&self) -> Result<()> {
+        TessendorfParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(GerstnerTessendorf::new(self.clone())?))
+    }
+
+    fn loop_period(&self) -> Option<f64> {
+        self.loop_period.map(f64::from)
+    }
+
+    fn loop_warning(&self) -> Option<String> {
+        let period = f64::from(self.loop_period?);
+        let omegas: Vec<f64> =
+            self.waves.iter().map(|w| f64::from(self.dispersion.omega(std::f32::consts::TAU / w.wavelength))).collect();
+        let longest = omegas.iter().copied().filter(|w| *w > 0.0).fold(f64::INFINITY, f64::min);
+        if !longest.is_finite() {
+            return None;
+        }
+        crate::spectrum::LoopFit::new(period, std::f64::consts::TAU / longest, omegas).warning("water.loop_period")
     }
 }
 

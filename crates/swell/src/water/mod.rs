@@ -10,6 +10,7 @@ mod fft_ocean;
 mod foam;
 mod gerstner;
 mod gerstner_tessendorf;
+mod model_params;
 mod noise_waves;
 mod radial_wave;
 mod river;
@@ -28,13 +29,14 @@ pub use fft_ocean::{
 pub use foam::{
     foam_coverage, foam_update, FoamField, FoamUpdate, LatticeSteps, FOAM_FADE_FLOOR, FOAM_LATTICE_STEP_S, FOAM_RAMP,
 };
-pub use gerstner::{Gerstner, GerstnerWave, MAX_GERSTNER_WAVES};
+pub use gerstner::{Gerstner, GerstnerSpec, GerstnerWave, MAX_GERSTNER_WAVES};
 pub use gerstner_tessendorf::{GerstnerTessendorf, TessendorfParams, TessendorfWave, MAX_TESSENDORF_WAVES};
+pub use model_params::ModelParams;
 pub use noise_waves::{NoiseFrame, NoiseParams, NoiseWaves, MAX_NOISE_OCTAVES};
 pub use radial_wave::{RadialWave, RadialWaveParams};
 pub use river::{River, RiverParams};
 pub use spring_mesh::{DropSchedule, Edges, SpringMesh, SpringMeshParams, MAX_SPRING_CELLS, MAX_STEPS_PER_ADVANCE};
 pub use steep_sines::{SteepSineWave, SteepSines, SteepSinesParams, MAX_STEEP_SINE_EXPONENT, MAX_STEEP_SINE_WAVES};
-pub use sum_of_sines::{SineWave, SumOfSines, MAX_SINE_WAVES};
+pub use sum_of_sines::{SineWave, SinesSpec, SumOfSines, MAX_SINE_WAVES};
 pub use wave_model::{evaluate_pointwise, height_by_inversion, PointWave, SurfacePoint, WaveModel};
 pub use wave_set::{wave_set, WaveSetParams};

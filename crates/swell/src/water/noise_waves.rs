@@ -19,6 +19,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
+use super::ModelParams;
 use crate::error::{
     check_count, check_finite_vec, check_non_negative, check_positive, check_range, check_seed, Result,
 };
@@ -108,6 +109,16 @@ impl NoiseWaves {
     /// The parameters, as given.
     pub fn params(&self) -> &NoiseParams {
         &self.params
+    }
+}
+
+impl ModelParams for NoiseParams {
+    fn validate(&self) -> Result<()> {
+        NoiseParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(NoiseWaves::new(*self)?))
     }
 }
 

@@ -14,6 +14,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
+use super::ModelParams;
 use crate::error::{check_finite_vec, check_non_negative, check_positive, Result};
 use crate::math::{fast_sin_cos, GridSpec};
 
@@ -65,6 +66,16 @@ impl RadialWave {
     /// The parameters, as given.
     pub fn params(&self) -> &RadialWaveParams {
         &self.params
+    }
+}
+
+impl ModelParams for RadialWaveParams {
+    fn validate(&self) -> Result<()> {
+        RadialWaveParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(RadialWave::new(*self)?))
     }
 }
 

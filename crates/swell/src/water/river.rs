@@ -28,6 +28,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::WaveModel;
+use super::ModelParams;
 use crate::error::{check_finite_vec, check_non_negative, check_positive, Error, Result};
 use crate::math::GridSpec;
 
@@ -175,6 +176,16 @@ impl River {
         let (sb, cb) = (k * z - f.ripple_phase).sin_cos();
         let a = p.ripple_amplitude;
         (a * sa * sb, a * PI * ca * sb, a * sa * k * cb)
+    }
+}
+
+impl ModelParams for RiverParams {
+    fn validate(&self) -> Result<()> {
+        RiverParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(River::new(*self)?))
     }
 }
 

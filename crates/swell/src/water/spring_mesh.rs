@@ -39,6 +39,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::WaveModel;
+use super::ModelParams;
 use crate::error::{check_count, check_non_negative, check_positive, check_range, check_seed, Error, Result};
 use crate::math::GridSpec;
 
@@ -52,15 +53,16 @@ pub const MAX_STEPS_PER_ADVANCE: u64 = 1_000_000;
 /// A node that moves farther than this many lattice extents from rest means the state diverged.
 const DIVERGENCE_EXTENTS: f32 = 100.0;
 
-/// How the lattice's border nodes behave.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Edges {
-    /// Border nodes never move (a basin wall reflects waves).
-    #[default]
-    Fixed,
-    /// Border nodes move like the others (no external force holds the lattice).
-    Free,
+crate::closed_set! {
+    /// How the lattice's border nodes behave (`edges`).
+    #[derive(Default)]
+    pub enum Edges: "an edge behaviour" {
+        /// Border nodes never move (a basin wall reflects waves).
+        #[default]
+        Fixed = "fixed",
+        /// Border nodes move like the others (no external force holds the lattice).
+        Free = "free",
+    }
 }
 
 /// Drops falling at regular intervals at seeded random places.
@@ -488,6 +490,34 @@ impl SpringMesh {
             a.lerp(b, fv)
         };
         (lerp2(&disp), lerp2(&nrm).normalize_or(Vec3::Y))
+    }
+}
+
+impl ModelParams for SpringMeshParams {
+    fn validate(&self) -> Result<()> {
+        SpringMeshParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(SpringMesh::new(*self)?))
+    }
+
+    /// Positions, velocities, forces, normals and the next positions: five `Vec3` per node.
+    fn estimate_bytes(&self) -> u64 {
+        let nodes = (u64::from(self.lattice[0]) + 1) * (u64::from(self.lattice[1]) + 1);
+        nodes * 5 * 12
+    }
+
+    fn steps_to(&self, t: f64) -> Option<f64> {
+        Some(((t + f64::from(self.warm_up)) / f64::from(self.time_step)).floor().max(0.0))
+    }
+
+    fn time_after_steps(&self, steps: f64) -> Option<f64> {
+        Some(steps * f64::from(self.time_step) - f64::from(self.warm_up))
+    }
+
+    fn takes_disturbances(&self) -> bool {
+        true
     }
 }
 

@@ -14,6 +14,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
+use super::ModelParams;
 use crate::error::{check_direction, check_non_negative, check_positive, check_range, Error, Result};
 use crate::math::{fast_sin_cos, GridSpec};
 
@@ -106,6 +107,16 @@ impl SteepSines {
     /// The parameters, as given.
     pub fn params(&self) -> &SteepSinesParams {
         &self.params
+    }
+}
+
+impl ModelParams for SteepSinesParams {
+    fn validate(&self) -> Result<()> {
+        SteepSinesParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(SteepSines::new(self.clone())?))
     }
 }
 

@@ -9,6 +9,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
+use super::ModelParams;
 use crate::error::{check_direction, check_range, Error, Result};
 use crate::math::GridSpec;
 
@@ -54,16 +55,7 @@ pub struct SumOfSines {
 impl SumOfSines {
     /// Builds the model, refusing invalid waves (0 to [`MAX_SINE_WAVES`] of them).
     pub fn new(waves: Vec<SineWave>) -> Result<Self> {
-        if waves.len() > MAX_SINE_WAVES {
-            return Err(Error::out_of_range(
-                "water.waves",
-                format!("{} waves", waves.len()),
-                format!("[0, {MAX_SINE_WAVES}] waves"),
-            ));
-        }
-        for (i, w) in waves.iter().enumerate() {
-            w.validate(&format!("water.waves[{i}]"))?;
-        }
+        Self::check(&waves)?;
         let prepared = waves
             .iter()
             .map(|w| {
@@ -74,9 +66,43 @@ impl SumOfSines {
         Ok(Self { waves, prepared })
     }
 
+    /// Checks a wave list: at most [`MAX_SINE_WAVES`], each valid (keys `water.waves[i]`).
+    fn check(waves: &[SineWave]) -> Result<()> {
+        if waves.len() > MAX_SINE_WAVES {
+            return Err(Error::out_of_range(
+                "water.waves",
+                format!("{} waves", waves.len()),
+                format!("[0, {MAX_SINE_WAVES}] waves"),
+            ));
+        }
+        for (i, w) in waves.iter().enumerate() {
+            w.validate(&format!("water.waves[{i}]"))?;
+        }
+        Ok(())
+    }
+
     /// The waves, as given.
     pub fn waves(&self) -> &[SineWave] {
         &self.waves
+    }
+}
+
+/// A plain sum of sines as a scene gives it: `model = "sines"` and a `[[water.waves]]` list.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SinesSpec {
+    /// The waves, 0 to [`MAX_SINE_WAVES`] of them.
+    #[serde(default)]
+    pub waves: Vec<SineWave>,
+}
+
+impl ModelParams for SinesSpec {
+    fn validate(&self) -> Result<()> {
+        SumOfSines::check(&self.waves)
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(SumOfSines::new(self.waves.clone())?))
     }
 }
 

@@ -20,6 +20,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
 use super::gerstner::{GerstnerWave, MAX_GERSTNER_WAVES};
+use super::{Gerstner, ModelParams, WaveModel};
 use crate::error::{check_count, check_non_negative, check_positive, check_range, check_seed, Error, Result};
 use crate::spectrum::Dispersion;
 
@@ -112,6 +113,18 @@ pub fn wave_set(params: &WaveSetParams) -> Result<Vec<GerstnerWave>> {
         .collect();
     waves.sort_by(|a, b| b.wavelength.total_cmp(&a.wavelength));
     Ok(waves)
+}
+
+/// `model = "wave-set"` builds Gerstner waves ([`Gerstner`]) from these.
+impl ModelParams for WaveSetParams {
+    fn validate(&self) -> Result<()> {
+        // Drawing the waves is cheap (at most a few dozen), and checks them as the build will.
+        Gerstner::check(&wave_set(self)?)
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(Gerstner::new(wave_set(self)?)?))
+    }
 }
 
 #[cfg(test)]

@@ -3,11 +3,14 @@
 use serde::{Deserialize, Serialize};
 
 use super::blender::BlenderOcean;
+use super::FftOcean;
 use crate::error::{check_count, check_range, Error, Result};
+use crate::spectrum::LoopFit;
 use crate::spectrum::{
     DirectionalSpectrum, Dispersion, Jonswap, Phillips, PiersonMoskowitz, SpectrumKind, Spreading, SpreadingFunction,
     Swell, Tma, WindSea,
 };
+use crate::water::{ModelParams, WaveModel};
 
 /// Smallest and largest FFT grid side.
 pub const FFT_GRID_RANGE: (u32, u32) = (16, 2048);
@@ -267,5 +270,30 @@ impl FftOceanParams {
                 )
             }),
         }
+    }
+}
+impl ModelParams for FftOceanParams {
+    fn validate(&self) -> Result<()> {
+        FftOceanParams::validate(self, "water")
+    }
+
+    fn build(&self) -> Result<Box<dyn WaveModel>> {
+        Ok(Box::new(FftOcean::new(self)?))
+    }
+
+    fn estimate_bytes(&self) -> u64 {
+        let p = self.resolved();
+        crate::limits::estimate_fft_bytes(p.grid, p.cascades)
+    }
+
+    fn loop_period(&self) -> Option<f64> {
+        self.loop_period.map(f64::from)
+    }
+
+    fn loop_warning(&self) -> Option<String> {
+        let p = self.resolved();
+        let period = f64::from(p.loop_period?);
+        let spectrum = p.spectrum();
+        LoopFit::for_spectrum(period, std::f64::consts::TAU / spectrum.peak_period()).warning("water.loop_period")
     }
 }
