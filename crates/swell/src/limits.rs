@@ -18,13 +18,18 @@
 //! can be read in one place (`docs/ROBUSTNESS.md` gives the reasons).
 
 use crate::error::{Error, Result};
+#[cfg(feature = "render")]
 use crate::scene::{Scene, TerrainGenerator, DEFAULT_TERRAIN_SIZE};
 
 pub use crate::math::MAX_GRID_CELLS;
 pub use crate::mesh::{MAX_OBJ_BYTES, MAX_OBJ_TRIANGLES, MAX_OBJ_VERTICES};
+#[cfg(feature = "render")]
 pub use crate::render::MAX_VIEW_JSON_BYTES;
+#[cfg(feature = "render")]
 pub use crate::scene::{MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_THREADS};
-pub use crate::terrain::{MAX_HEIGHTMAP_BYTES, MAX_TERRAIN_SIZE};
+#[cfg(feature = "render")]
+pub use crate::terrain::MAX_HEIGHTMAP_BYTES;
+pub use crate::terrain::MAX_TERRAIN_SIZE;
 pub use crate::water::{
     MAX_AIRY_WAVES, MAX_GERSTNER_WAVES, MAX_NOISE_OCTAVES, MAX_SINE_WAVES, MAX_SPRING_CELLS, MAX_STEEP_SINE_WAVES,
     MAX_STEPS_PER_ADVANCE, MAX_TESSENDORF_WAVES,
@@ -121,6 +126,7 @@ pub fn estimate_grid_bytes(cells_x: u32, cells_z: u32, per_vertex: u64) -> u64 {
 /// known from the file), and framebuffer, supersampled where asked.
 ///
 /// Does not read any file; call it before anything is allocated.
+#[cfg(feature = "render")]
 pub fn estimate_world_bytes(scene: &Scene) -> u64 {
     let mut bytes = estimate_frame_bytes(scene.render.width, scene.render.height);
     // Supersampling renders into a frame `supersample` times larger on each side, then filters it
@@ -300,6 +306,7 @@ mod tests {
         assert!(e.starts_with("deep.toml: arrays or inline tables nested") && e.contains("64"), "{e}");
     }
 
+    #[cfg(feature = "render")]
     #[test]
     fn estimates_grow_with_every_size_and_the_budget_refuses_the_largest() {
         let small = estimate_grid_bytes(256, 256, WATER_BYTES_PER_VERTEX);
