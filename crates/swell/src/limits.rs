@@ -245,6 +245,7 @@ fn nesting_depth(text: &str) -> usize {
 mod tests {
     use super::*;
     use crate::math::MAX_GRID_CELLS;
+    #[cfg(feature = "render")]
     use crate::scene::MAX_IMAGE_SIDE;
 
     #[test]
@@ -259,6 +260,7 @@ mod tests {
         assert!(e.starts_with("deep.toml: arrays or inline tables nested") && e.contains("64"), "{e}");
     }
 
+    #[cfg(feature = "render")]
     #[test]
     fn estimates_grow_with_every_size_and_the_budget_refuses_the_largest() {
         let small = estimate_grid_bytes(256, 256, WATER_BYTES_PER_VERTEX);
