@@ -403,7 +403,8 @@ impl ViewerApp {
                 // A commit that does not build is undone and shown as a refusal in the panel, and
                 // a failure of an older revision is left to the current one's frame; otherwise a
                 // stateful model went unstable: stop the clock so the error stays readable.
-                if self.editor.frame_failed(revision, &e) == FrameFailure::Unrecoverable {
+                let failure = self.editor.frame_failed(revision, &e);
+                if failure == FrameFailure::Unrecoverable {
                     self.clock.playing = false;
                     self.run_error = Some(e.to_string());
                 }

@@ -244,6 +244,7 @@ fn nesting_depth(text: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    #[cfg(feature = "render")]
     use crate::math::MAX_GRID_CELLS;
     #[cfg(feature = "render")]
     use crate::scene::MAX_IMAGE_SIDE;
