@@ -18,8 +18,8 @@
 //!
 //! - **`render`**: scenes (`scene`, with `Water` and scene files in TOML), `shading` with image
 //!   textures, the CPU rasterizer `raster`, the passes in `render`, PNG heightmaps in `terrain`, and
-//!   the atomic file writes in `io`. One feature because scenes hold the materials and textures
-//!   shading defines.
+//!   the atomic file writes in `io`. One feature because a scene is what the passes draw and it
+//!   loads image textures and PNG heightmaps.
 //! - **`export`**: writing results, the `export` module (PNG, GIF, EXR, OBJ, glTF, bake sequences);
 //!   implies `render`, since what it writes comes from scenes.
 //!
