@@ -11,7 +11,7 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(scene) = Scene::from_toml(text, "fuzz") {
         // What parses must validate again, write back and read back to the same scene.
         scene.validate().expect("a parsed scene validates");
-        assert!(swell::limits::estimate_world_bytes(&scene) <= swell::limits::MEMORY_BUDGET_BYTES);
+        assert!(scene.estimate_bytes() <= swell::limits::MEMORY_BUDGET_BYTES);
         let again = Scene::from_toml(&scene.to_toml(), "round trip").expect("a written scene reads back");
         assert_eq!(again.to_toml(), scene.to_toml());
     }

@@ -395,7 +395,7 @@ pub unsafe extern "C" fn swell_water_heights(
         check_null("xz", xz)?;
         check_null("heights", heights)?;
         check_time(t)?;
-        if xz_len % 2 != 0 {
+        if !xz_len.is_multiple_of(2) {
             return Err(invalid("xz_len", format!("{xz_len}; must be even (pairs of x, z)")));
         }
         check_len("heights_len", heights_len, xz_len / 2, "one height per (x, z) pair: xz_len / 2")?;
@@ -427,7 +427,7 @@ pub unsafe extern "C" fn swell_water_normals(
         check_null("xz", xz)?;
         check_null("normals", normals)?;
         check_time(t)?;
-        if xz_len % 2 != 0 {
+        if !xz_len.is_multiple_of(2) {
             return Err(invalid("xz_len", format!("{xz_len}; must be even (pairs of x, z)")));
         }
         check_len("normals_len", normals_len, 3 * (xz_len / 2), "3 floats per (x, z) pair: 3 * xz_len / 2")?;

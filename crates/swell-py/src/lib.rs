@@ -35,7 +35,6 @@ fn check_time(t: f64) -> PyResult<()> {
     }
 }
 
-
 /// The water of a scene, built and ready to answer queries about any time `t` (s).
 ///
 /// Queries at one time share one evaluation of the model's state; answers depend only on the

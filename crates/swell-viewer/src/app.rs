@@ -4,6 +4,8 @@
 use std::cell::RefCell;
 use std::path::PathBuf;
 use std::rc::Rc;
+use std::sync::mpsc::{channel, Receiver, Sender};
+use std::sync::Arc;
 use std::time::Instant;
 
 use eframe::egui::{self, Color32, Key, PointerButton, Rect, Sense, ViewportCommand};
@@ -53,7 +55,7 @@ pub const SHORTCUTS: &[(Key, Shortcut)] = &[
     (Key::R, Shortcut::ResetCamera),
 ];
 
-/// Why a screenshot was asked for, carried through egui's screenshot event.
+/// Why a screenshot was asked for, sent back with the image by egui's screenshot callback.
 #[derive(Clone, Debug)]
 enum ScreenshotPurpose {
     /// The panel's "Save window PNG".
@@ -92,7 +94,13 @@ pub struct ViewerApp {
     run_error: Option<String>,
     /// Where the scripted run's outcome goes, read by [`crate::run`] after the window closes.
     outcome: Rc<RefCell<Option<Error>>>,
+    /// Window screenshots: egui hands each to a callback once the backend has read the pixels
+    /// (possibly on another thread); it waits here for the next frame's [`Self::handle_screenshots`].
+    shots: (Sender<Screenshot>, Receiver<Screenshot>),
 }
+
+/// A window screenshot and why it was taken.
+type Screenshot = (ScreenshotPurpose, Arc<egui::ColorImage>);
 
 impl ViewerApp {
     /// The viewer for `options.scene`; `outcome` receives any error of the scripted exit.
@@ -113,11 +121,12 @@ impl ViewerApp {
             rendered: 0,
             run_error: None,
             outcome,
+            shots: channel(),
         })
     }
 
     fn handle_keys(&mut self, ctx: &egui::Context) {
-        if ctx.wants_keyboard_input() {
+        if ctx.egui_wants_keyboard_input() {
             return;
         }
         for &(key, action) in SHORTCUTS {
@@ -260,28 +269,26 @@ impl ViewerApp {
                 Err(e) => Err(failed("load the heightmap", &p, e)),
             },
             FileRequest::SaveWindow(p) => {
-                ctx.send_viewport_cmd(ViewportCommand::Screenshot(egui::UserData::new(ScreenshotPurpose::Panel(p))));
+                self.request_screenshot(ctx, ScreenshotPurpose::Panel(p));
                 Ok("taking a screenshot of the window...".into())
             }
         }
     }
 
-    /// Saves window screenshots that arrived this frame.
-    fn handle_screenshots(&mut self, ctx: &egui::Context) {
-        let shots: Vec<_> = ctx.input(|i| {
-            i.raw
-                .events
-                .iter()
-                .filter_map(|e| match e {
-                    egui::Event::Screenshot { user_data, image, .. } => user_data
-                        .data
-                        .as_ref()
-                        .and_then(|d| d.downcast_ref::<ScreenshotPurpose>())
-                        .map(|p| (p.clone(), image.clone())),
-                    _ => None,
-                })
-                .collect()
+    /// Asks egui for a screenshot of the next frame, to arrive in [`Self::shots`].
+    fn request_screenshot(&self, ctx: &egui::Context, purpose: ScreenshotPurpose) {
+        let (tx, wake) = (self.shots.0.clone(), ctx.clone());
+        ctx.request_screenshot(move |image| {
+            // Fails only once the viewer is gone, when nobody wants the image any more.
+            let _ = tx.send((purpose, image));
+            // egui does not repaint for a screenshot by itself; a paused view would wait for input.
+            wake.request_repaint();
         });
+    }
+
+    /// Saves window screenshots that arrived since the last frame.
+    fn handle_screenshots(&mut self, ctx: &egui::Context) {
+        let shots: Vec<Screenshot> = self.shots.1.try_iter().collect();
         for (purpose, image) in shots {
             let [w, h] = image.size;
             let result = |p: &PathBuf| crate::files::write_screenshot(p, w, h, image.as_raw());
@@ -310,8 +317,7 @@ impl ViewerApp {
         match self.exit {
             ExitState::Running if self.rendered >= n => match self.options.screenshot.clone() {
                 Some(p) => {
-                    let data = egui::UserData::new(ScreenshotPurpose::Exit(p));
-                    ctx.send_viewport_cmd(ViewportCommand::Screenshot(data));
+                    self.request_screenshot(ctx, ScreenshotPurpose::Exit(p));
                     self.exit = ExitState::WaitingForScreenshot(0);
                 }
                 None => self.close(ctx),
@@ -397,7 +403,8 @@ impl ViewerApp {
                 // A commit that does not build is undone and shown as a refusal in the panel, and
                 // a failure of an older revision is left to the current one's frame; otherwise a
                 // stateful model went unstable: stop the clock so the error stays readable.
-                if self.editor.frame_failed(revision, &e) == FrameFailure::Unrecoverable {
+                let failure = self.editor.frame_failed(revision, &e);
+                if failure == FrameFailure::Unrecoverable {
                     self.clock.playing = false;
                     self.run_error = Some(e.to_string());
                 }
@@ -423,7 +430,7 @@ impl ViewerApp {
 /// pass of egui's shader (an sRGB decode and a `pow` per channel and pixel) over some 0.35 M
 /// pixels every frame. Same pixels on screen.
 fn panel_frame(ctx: &egui::Context) -> egui::Frame {
-    egui::Frame::side_top_panel(&ctx.style()).fill(Color32::TRANSPARENT)
+    egui::Frame::side_top_panel(&ctx.global_style()).fill(Color32::TRANSPARENT)
 }
 
 impl eframe::App for ViewerApp {
@@ -438,7 +445,8 @@ impl eframe::App for ViewerApp {
         visuals.panel_fill.to_normalized_gamma_f32()
     }
 
-    fn update(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let ctx = &ui.ctx().clone();
         let now = Instant::now();
         let frame_dt = self.last_frame.map(|t| now - t).unwrap_or_default();
         self.last_frame = Some(now);
@@ -447,7 +455,7 @@ impl eframe::App for ViewerApp {
         self.handle_keys(ctx);
         self.clock.tick(frame_dt.as_secs_f64());
 
-        egui::TopBottomPanel::bottom("status").exact_height(STATUS_HEIGHT).frame(panel_frame(ctx)).show(ctx, |ui| {
+        egui::Panel::bottom("status").exact_size(STATUS_HEIGHT).frame(panel_frame(ctx)).show(ui, |ui| {
             ui.horizontal_centered(|ui| {
                 ui.monospace(self.status_line());
                 if let Some(e) = &self.run_error {
@@ -455,7 +463,7 @@ impl eframe::App for ViewerApp {
                 }
             });
         });
-        egui::SidePanel::right("panel").exact_width(PANEL_WIDTH).frame(panel_frame(ctx)).show(ctx, |ui| {
+        egui::Panel::right("panel").exact_size(PANEL_WIDTH).frame(panel_frame(ctx)).show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 let error = self.editor.error().map(str::to_owned);
                 let out =
@@ -465,7 +473,7 @@ impl eframe::App for ViewerApp {
         });
         // No fill behind the view: it would be one more full-view pass of egui's shader on
         // llvmpipe; black is painted only until the first frame exists.
-        egui::CentralPanel::default().frame(egui::Frame::none()).show(ctx, |ui| {
+        egui::CentralPanel::no_frame().show(ui, |ui| {
             let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
             self.handle_mouse(ui, &response);
             let ppp = ctx.pixels_per_point();

@@ -159,7 +159,7 @@ pub fn run(options: ViewerOptions) -> Result<()> {
             .with_position([0.0, 0.0]),
         // The view is blitted, not shaded (gl_view.rs); egui's dithering only touches the panel.
         // No vsync: frames are paced by the render, and Xvfb has no display refresh to wait for.
-        vsync: false,
+        glow_options: eframe::egui_glow::GlowConfiguration { vsync: false, ..Default::default() },
         dithering: false,
         multisampling: 0,
         depth_buffer: 0,

@@ -25,7 +25,7 @@ pub fn water_point(camera: &Camera, width: f32, height: f32, px: f32, py: f32) -
     }
     let dir: Vec3 = p.truncate() / p.w - camera.eye;
     // Only rays going down reach the water in front of the camera (the eye is above it).
-    if !(dir.y < 0.0) || camera.eye.y <= 0.0 {
+    if dir.y.is_nan() || dir.y >= 0.0 || camera.eye.y <= 0.0 {
         return None;
     }
     let s = -camera.eye.y / dir.y;

@@ -10,7 +10,7 @@
 //! Run with `cargo bench -p swell --bench experiments`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use glam::{Mat4, Vec2, Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 use swell::math::GridSpec;
 use swell::mesh::SurfaceMesh;
 use swell::raster::{draw, ClipVertex, Cull, Framebuffer};
@@ -76,8 +76,8 @@ fn paper001(c: &mut Criterion) {
     for p in &mut mesh.positions {
         p.y = 8.0 * (0.09 * p.x).sin() * (0.07 * p.z).cos() + 2.0 * (0.3 * p.x + 0.2 * p.z).sin();
     }
-    let clip_from_world = Mat4::perspective_rh_gl(45f32.to_radians(), 1.0, 1.0, 1000.0)
-        * Mat4::look_at_rh(Vec3::new(0.0, 85.0, 100.0), Vec3::new(0.0, -8.0, 0.0), Vec3::Y);
+    let clip_from_world = glam::camera::rh::proj::opengl::perspective(45f32.to_radians(), 1.0, 1.0, 1000.0)
+        * glam::camera::rh::view::look_at_mat4(Vec3::new(0.0, 85.0, 100.0), Vec3::new(0.0, -8.0, 0.0), Vec3::Y);
     let mut clip = vec![ClipVertex::<()>::default(); mesh.positions.len()];
     let mut faces = vec![Vec3::ZERO; mesh.indices.len() / 3];
     let mut target = Framebuffer::new(800, 800);

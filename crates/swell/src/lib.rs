@@ -9,6 +9,20 @@
 //!
 //! A program that only wants moving water needs [`water`] and [`mesh`]; the renderer is optional.
 //!
+//! ## Cargo features
+//!
+//! Both on by default; without them (`default-features = false`) the crate is the simulation core:
+//! `math`, `spectrum`, `water`, `terrain` (the generators), `mesh`, `error` and `limits`, depending
+//! on glam, rayon, serde, rand, rustfft and thiserror only, none of image, exr, gif, toml,
+//! serde_json or tempfile.
+//!
+//! - **`render`**: scenes (`scene`, with `Water` and scene files in TOML), `shading` with image
+//!   textures, the CPU rasterizer `raster`, the passes in `render`, PNG heightmaps in `terrain`, and
+//!   the atomic file writes in `io`. One feature because a scene is what the passes draw and it
+//!   loads image textures and PNG heightmaps.
+//! - **`export`**: writing results, the `export` module (PNG, GIF, EXR, OBJ, glTF, bake sequences);
+//!   implies `render`, since what it writes comes from scenes.
+//!
 //! ## Conventions (stated once, here)
 //!
 //! - **Units**: SI everywhere in the library: metres, seconds, radians, kilograms. Degrees and other
@@ -51,19 +65,27 @@
 
 pub mod closed_set;
 pub mod error;
+#[cfg(feature = "export")]
 pub mod export;
+#[cfg(feature = "render")]
+pub mod io;
 pub mod limits;
 pub mod math;
 pub mod mesh;
+#[cfg(feature = "render")]
 pub mod raster;
+#[cfg(feature = "render")]
 pub mod render;
+#[cfg(feature = "render")]
 pub mod scene;
+#[cfg(feature = "render")]
 pub mod shading;
 pub mod spectrum;
 pub mod terrain;
 pub mod water;
 
 pub use error::{Error, Result};
+#[cfg(feature = "render")]
 pub use scene::Water;
 
 /// Standard gravity g in m/s², used by every dispersion relation.

@@ -244,7 +244,9 @@ fn nesting_depth(text: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    #[cfg(feature = "render")]
     use crate::math::MAX_GRID_CELLS;
+    #[cfg(feature = "render")]
     use crate::scene::MAX_IMAGE_SIDE;
 
     #[test]
@@ -259,6 +261,7 @@ mod tests {
         assert!(e.starts_with("deep.toml: arrays or inline tables nested") && e.contains("64"), "{e}");
     }
 
+    #[cfg(feature = "render")]
     #[test]
     fn estimates_grow_with_every_size_and_the_budget_refuses_the_largest() {
         let small = estimate_grid_bytes(256, 256, WATER_BYTES_PER_VERTEX);

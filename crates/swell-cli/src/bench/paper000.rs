@@ -136,7 +136,7 @@ pub fn paper_waves(added: usize) -> Vec<GerstnerWave> {
 /// Quads along x and z making exactly `polygons` quads, as square as possible (1200 = 30 x 40).
 pub fn cells_for(polygons: u32) -> (u32, u32) {
     let root = (polygons as f64).sqrt().floor() as u32;
-    let a = (1..=root.max(1)).rev().find(|a| polygons % a == 0).unwrap_or(1);
+    let a = (1..=root.max(1)).rev().find(|a| polygons.is_multiple_of(*a)).unwrap_or(1);
     (a, polygons / a)
 }
 

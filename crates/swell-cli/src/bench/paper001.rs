@@ -69,8 +69,14 @@ impl Terrain {
         for (p, h) in mesh.positions.iter_mut().zip(heightmap(size, seed)) {
             p.y = h;
         }
-        let view = Mat4::look_at_rh(Vec3::new(0.0, 85.0, 100.0), Vec3::new(0.0, -8.0, 0.0), Vec3::Y);
-        let proj = Mat4::perspective_rh_gl(45f32.to_radians(), IMAGE.0 as f32 / IMAGE.1 as f32, 1.0, 1000.0);
+        let view =
+            glam::camera::rh::view::look_at_mat4(Vec3::new(0.0, 85.0, 100.0), Vec3::new(0.0, -8.0, 0.0), Vec3::Y);
+        let proj = glam::camera::rh::proj::opengl::perspective(
+            45f32.to_radians(),
+            IMAGE.0 as f32 / IMAGE.1 as f32,
+            1.0,
+            1000.0,
+        );
         let triangles = mesh.indices.len() / 3;
         Ok(Self {
             clip: vec![ClipVertex::default(); mesh.positions.len()],

@@ -163,7 +163,11 @@ mod tests {
                 x = std::hint::black_box(x.wrapping_add(1));
             }
         };
-        let busy = measure(Repetitions::exactly(3), || Ok(work())).unwrap();
+        let busy = measure(Repetitions::exactly(3), || {
+            let _: () = work();
+            Ok(())
+        })
+        .unwrap();
         // Other tests run in threads of this process and only add to its CPU time, so bound from
         // below only.
         assert!(busy.cpu_ms.unwrap() >= 5.0, "{busy:?}");

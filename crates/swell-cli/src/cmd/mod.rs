@@ -121,7 +121,7 @@ pub fn advance_with_progress(world: &mut World, t: f64) -> Result<()> {
 
 /// A whole number with thousands separators (`250,000`); numbers past 10^15 in scientific form.
 pub fn group_digits(x: f64) -> String {
-    if !(x.abs() < 1e15) {
+    if x.is_nan() || x.abs() >= 1e15 {
         return format!("{x:e}");
     }
     let digits = format!("{}", x.abs().round() as u64);

@@ -137,11 +137,13 @@ pub(crate) fn show_headless(draft: &mut Scene, state: &mut PanelState, clock: &m
     let mut out = PanelOutput::default();
     for _ in 0..2 {
         // Two passes: egui lays some widgets out in a first, invisible pass.
-        let _ = ctx.run(egui::RawInput::default(), |ctx| {
-            egui::CentralPanel::default().show(ctx, |ui| {
+        let mut output = ctx.run_ui(egui::RawInput::default(), |ui| {
+            egui::CentralPanel::default().show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| out = show_all(ui, draft, state, clock, Some("test error")));
             });
         });
+        // No painter takes the font textures here; egui (debug builds) insists they are handled.
+        output.textures_delta.clear();
     }
     out
 }
@@ -369,11 +371,12 @@ mod tests {
         };
         let mut frame = |events: Vec<egui::Event>, draft: &mut Scene| {
             let input = egui::RawInput { events, ..Default::default() };
-            let _ = ctx.run(input, |ctx| {
-                egui::CentralPanel::default().show(ctx, |ui| {
+            let mut output = ctx.run_ui(input, |ui| {
+                egui::CentralPanel::default().show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| show_all(ui, draft, &mut state, &mut clock, None));
                 });
             });
+            output.textures_delta.clear();
         };
         let mut changed = std::collections::BTreeSet::new();
         // Sections open (as while recording), so every widget can take the focus.

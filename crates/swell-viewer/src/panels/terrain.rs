@@ -128,7 +128,7 @@ pub fn regenerate(spec: &mut TerrainSpec) -> bool {
 /// and look are kept. The file is read when the draft is applied, so a bad file is refused there.
 pub fn use_heightmap(spec: Option<&TerrainSpec>, path: PathBuf) -> TerrainSpec {
     let (transform, material) =
-        spec.map_or((Transform::IDENTITY, TerrainMaterial::default()), |s| (s.transform, s.material.clone()));
+        spec.map_or((Transform::IDENTITY, TerrainMaterial::default()), |s| (s.transform, s.material));
     TerrainSpec {
         size: None,
         extent: None,

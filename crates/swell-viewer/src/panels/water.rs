@@ -13,15 +13,6 @@ use swell::{Error, Result};
 use super::{airy, fft_ocean, fields, gerstner, noise, radial, river, sines, springs, steep_sines, tessendorf};
 use super::{keys, water_transform, wave_set, PanelState};
 
-/// The `water.model` name of a model spec, as written in scene files.
-pub fn model_name(model: &WaterModelSpec) -> String {
-    // The serde tag is the one source of truth for names, so this needs no per-model arm.
-    match toml::Table::try_from(model).ok().and_then(|t| t.get("model").cloned()) {
-        Some(toml::Value::String(s)) => s,
-        _ => "?".into(),
-    }
-}
-
 /// The water with its model switched to `name` (one of [`WATER_MODELS`]), keeping the patch and
 /// material. Between Gerstner and sines the wave list carries over (a sine wave is a Gerstner wave
 /// of steepness 0, so that direction changes nothing on screen); any other model starts from its
@@ -32,7 +23,7 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
         None => (WaterSurface::default(), WaterMaterial::default()),
     };
     if let Some(w) = water {
-        if model_name(&w.model) == name {
+        if w.model.name() == name {
             return Ok(w.clone());
         }
         match (&w.model, name) {
@@ -140,7 +131,7 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
 /// Shows the water section; returns whether `water` changed.
 pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) -> bool {
     let mut changed = false;
-    let current = water.as_ref().map(|w| model_name(&w.model));
+    let current = water.as_ref().map(|w| w.model.name().to_string());
     let mut chosen = current.clone();
     fields::grid("water-model").show(ui, |ui| {
         ui.label("model");
@@ -219,7 +210,7 @@ mod tests {
     #[test]
     fn names_come_from_the_scene_format() {
         let sea = preset("sea").unwrap().water.unwrap();
-        assert_eq!(model_name(&sea.model), "gerstner");
+        assert_eq!(sea.model.name(), "gerstner");
         for (s, name) in fields::member_options::<Shading>() {
             let text = format!("model = 'sines'\n[material]\nshading = '{name}'\n");
             let w = WaterSpec::from_table(toml::from_str(&text).unwrap(), "t").unwrap();
@@ -240,7 +231,7 @@ mod tests {
         // Every model listed can be chosen from nothing and builds.
         for &m in WATER_MODELS {
             let w = switch_model(None, m).unwrap();
-            assert_eq!(model_name(&w.model), m);
+            assert_eq!(w.model.name(), m);
             w.model.build().unwrap();
         }
         assert!(switch_model(Some(&sea), "lava").is_err());

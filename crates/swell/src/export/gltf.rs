@@ -154,7 +154,7 @@ pub fn gltf_document(
 fn check_mesh(m: &NamedMesh) -> Result<()> {
     let n = m.positions.len();
     let key = format!("{}.vertices", m.name);
-    if n == 0 || m.normals.len() != n || m.uvs.len() != n || m.indices.len() % 3 != 0 {
+    if n == 0 || m.normals.len() != n || m.uvs.len() != n || !m.indices.len().is_multiple_of(3) {
         return Err(Error::invalid(key, "a mesh needs vertices, one normal and uv each, and whole triangles"));
     }
     let finite = |v: &[f32]| v.iter().all(|c| c.is_finite());

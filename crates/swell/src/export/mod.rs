@@ -1,6 +1,5 @@
 //! Writing results to files: images and animations, meshes, baked map sequences, always atomically.
 
-mod atomic;
 mod image_file;
 // Meshes (OBJ, glTF), float maps (EXR) and bake sequences: issue 8.
 mod array_job;
@@ -16,7 +15,8 @@ mod obj;
 
 pub use self::exr::{write_exr_gray, write_exr_rgb, ExrCompression};
 pub use array_job::{resolve_shard, ResolvedShard, SHARD_COUNT_VAR};
-pub use atomic::write_atomically;
+// Kept here too for callers from before it moved down to `io` (terrain writes files as well).
+pub use crate::io::write_atomically;
 pub use bake::{model_loop_period, Bake, BakeSettings, MAX_FPS, MIN_PNG_RANGE_M, PNG_RANGE_HEADROOM};
 pub use bake_manifest::{
     AxisConversion, BakeAxes, BakeFoam, BakeGrid, BakeManifest, BakeMap, BakePng, BakeUnits, BAKE_MANIFEST_VERSION,

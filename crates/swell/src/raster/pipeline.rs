@@ -120,26 +120,35 @@ pub fn draw_with<V, S>(
         // the horizon, a few large ones in front, none in the sky), and rayon's adaptive split
         // otherwise leaves one thread a long run of costly bands while the other waits.
         .with_max_len(1)
-        .for_each(|(band, (color, depth))| raster_band(chunks, vertices, band, color, depth, row, height, shader));
+        .for_each(|(index, (color, depth))| {
+            raster_band(chunks, vertices, Band { index, row, height }, color, depth, shader)
+        });
 }
 
-/// Draws band `band` (rows `band * BAND_ROWS ..`, `color` and `depth` its pixels, `row` wide):
+/// Which band [`raster_band`] draws: rows `index * BAND_ROWS ..` of an image `row` pixels wide
+/// and `height` high.
+#[derive(Clone, Copy)]
+struct Band {
+    index: usize,
+    row: usize,
+    height: u32,
+}
+
+/// Draws band `band` (`color` and `depth` its pixels):
 /// every chunk's triangles binned to it, in submission order.
 // The three stages stay out of line so that profiles (perf, callgrind) name them.
 #[inline(never)]
-#[allow(clippy::too_many_arguments)]
 fn raster_band<V: Varying, S>(
     chunks: &[Chunk<V>],
     vertices: &[ClipVertex<V>],
-    band: usize,
+    band: Band,
     color: &mut [Vec3],
     depth: &mut [f32],
-    row: usize,
-    height: u32,
     shader: &S,
 ) where
     S: Fn(&Fragment<V>) -> Vec3 + Sync,
 {
+    let Band { index: band, row, height } = band;
     let y0 = band as u32 * BAND_ROWS;
     let y1 = (y0 + BAND_ROWS).min(height) - 1;
     let has_varying = std::mem::size_of::<V>() != 0;

@@ -126,7 +126,7 @@ impl Rgba8Encoder {
     #[inline]
     pub fn encode(&self, c: f32) -> u8 {
         // Negative values, zero and NaN all encode to 0 (every threshold is positive).
-        if !(c > 0.0) {
+        if c.is_nan() || c <= 0.0 {
             return 0;
         }
         // Below the first bucket: bucket 0, whose count is 0 and whose next threshold is above c;

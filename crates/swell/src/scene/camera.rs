@@ -89,16 +89,34 @@ impl Camera {
 
     /// World to view transform (OpenGL `lookAt`).
     pub fn view_from_world(&self) -> Mat4 {
-        Mat4::look_at_rh(self.eye, self.target, self.up)
+        glam::camera::rh::view::look_at_mat4(self.eye, self.target, self.up)
     }
 
     /// View to clip transform (OpenGL `gluPerspective`) for an image of `aspect` = width / height.
     pub fn clip_from_view(&self, aspect: f32) -> Mat4 {
-        Mat4::perspective_rh_gl(self.fov_y_deg.to_radians(), aspect, self.near, self.far)
+        gl_perspective(self.fov_y_deg.to_radians(), aspect, self.near, self.far)
     }
 
     /// World to clip transform.
     pub fn clip_from_world(&self, aspect: f32) -> Mat4 {
         self.clip_from_view(aspect) * self.view_from_world()
     }
+}
+
+/// `gluPerspective`: view to clip for a vertical field of view `fov_y` (radians, in (0, π)),
+/// `aspect` = width / height (> 0) and clip distances 0 < `near` < `far` (metres); clip z in [−w, w].
+///
+/// Written out rather than taken from `glam::camera::rh::proj::opengl::perspective` because that
+/// one computes cot(fov/2) as cos/sin and the depth terms in another order: the same matrix up to
+/// rounding, but not bit for bit the one glam 0.29's `Mat4::perspective_rh_gl` gave, and renders,
+/// bakes and their golden files are compared byte for byte across versions. This is that formula.
+fn gl_perspective(fov_y: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
+    let inv_length = 1.0 / (near - far);
+    let f = 1.0 / (0.5 * fov_y).tan();
+    Mat4::from_cols(
+        glam::Vec4::new(f / aspect, 0.0, 0.0, 0.0),
+        glam::Vec4::new(0.0, f, 0.0, 0.0),
+        glam::Vec4::new(0.0, 0.0, (near + far) * inv_length, -1.0),
+        glam::Vec4::new(0.0, 0.0, (2.0 * near * far) * inv_length, 0.0),
+    )
 }

@@ -399,7 +399,7 @@ mod tests {
         assert_eq!(e, "t = NaN is outside finite seconds");
         let e = w.heights_at(0.0, &[Vec2::ZERO], &mut []).unwrap_err().to_string();
         assert_eq!(e, "heights: holds 0 elements; must hold 1 (one per point)");
-        let e = w.foam(f64::INFINITY, &mut vec![0.0; 25]).unwrap_err().to_string();
+        let e = w.foam(f64::INFINITY, &mut [0.0; 25]).unwrap_err().to_string();
         assert!(e.starts_with("t = inf"), "{e}");
         let no_water = "version = 1\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n";
         let e = Water::from_toml(no_water, "t").unwrap_err().to_string();

@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
-use crate::export::write_atomically;
+use crate::io::write_atomically;
 
 /// Most bytes a heightmap may decode to: 4097 x 4097 pixels of 16-bit grey with alpha. Images are
 /// refused from their header, before any pixel is decoded, so a small file claiming huge

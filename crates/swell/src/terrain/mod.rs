@@ -10,6 +10,9 @@ mod channel;
 mod diamond_square;
 mod generator_params;
 mod height_field;
+// PNG heightmaps and their TOML sidecars: files that scenes name, so behind the `render` feature
+// with the scenes (image and toml are its dependencies).
+#[cfg(feature = "render")]
 mod heightmap_io;
 mod hills;
 mod lattice_random;
@@ -22,6 +25,7 @@ pub use channel::{channel, ChannelParams};
 pub use diamond_square::{check_diamond_square_size, diamond_square, DiamondSquareParams, MAX_AMPLITUDE};
 pub use generator_params::{GeneratorParams, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE};
 pub use height_field::{HeightField, MAX_TERRAIN_SIZE};
+#[cfg(feature = "render")]
 pub use heightmap_io::{
     decode_grey_png, load_heightmap, png_header_size, read_grey_png, read_grey_png_from, read_sidecar, sidecar_path,
     write_heightmap, HeightmapOverrides, HeightmapSidecar, MAX_HEIGHTMAP_BYTES,

@@ -77,6 +77,15 @@ pub(crate) struct TrochoidalSum {
 /// Per-frame phases `(w_i t - phi_i) mod 2 pi`, computed in f64.
 pub(crate) type Phases = [f32; MAX_TROCHOIDAL_WAVES];
 
+/// Where one block of [`BLOCK`] vertices starts: column `start` of grid row `j`, at rest depth
+/// coordinate `z` (m).
+#[derive(Clone, Copy)]
+struct BlockAt {
+    start: usize,
+    j: usize,
+    z: f32,
+}
+
 impl TrochoidalSum {
     /// Prepares `waves` (at most [`MAX_TROCHOIDAL_WAVES`]; the callers check).
     pub fn new(waves: Vec<Trochoid>) -> Self {
@@ -173,30 +182,21 @@ impl TrochoidalSum {
         let row = prow.len();
         for start in (0..row).step_by(BLOCK) {
             let len = BLOCK.min(row - start);
-            self.evaluate_block(
-                grid,
-                start,
-                j,
-                z,
-                phases,
-                &mut prow[start..start + len],
-                &mut nrow[start..start + len],
-            );
+            let block = BlockAt { start, j, z };
+            self.evaluate_block(grid, block, phases, &mut prow[start..start + len], &mut nrow[start..start + len]);
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn evaluate_block(
         &self,
         grid: &GridSpec,
-        start: usize,
-        j: usize,
-        z: f32,
+        block: BlockAt,
         phases: &Phases,
         positions: &mut [Vec3],
         normals: &mut [Vec3],
     ) {
+        let BlockAt { start, j, z } = block;
         let xs: [f32; BLOCK] = std::array::from_fn(|i| grid.rest_position(start + i, j).x);
         let mut ox = [0.0f32; BLOCK];
         let mut oy = [0.0f32; BLOCK];

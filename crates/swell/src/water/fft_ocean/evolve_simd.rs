@@ -32,8 +32,7 @@ pub(super) unsafe fn evolve(h: &mut [Complex32], h0: &[Complex32], hm: &[Complex
     let tv = _mm256_set1_pd(t);
     let (half, neg_half) = (_mm256_set1_ps(0.5), _mm256_set1_ps(-0.5));
     let (four, quarter, tau) = (_mm256_set1_ps(4.0), _mm256_set1_ps(0.25), _mm256_set1_ps(std::f32::consts::TAU));
-    let (s1, s2, s3) =
-        (_mm256_set1_ps(-1.951_529_6e-4), _mm256_set1_ps(8.332_160_9e-3), _mm256_set1_ps(1.666_665_5e-1));
+    let (s1, s2, s3) = (_mm256_set1_ps(-1.951_529_6e-4), _mm256_set1_ps(8.332_161e-3), _mm256_set1_ps(1.666_665_5e-1));
     let (c1, c2, c3) = (_mm256_set1_ps(2.443_315_7e-5), _mm256_set1_ps(1.388_731_6e-3), _mm256_set1_ps(4.166_664_6e-2));
     let one = _mm256_set1_ps(1.0);
     let (one_i, two_i) = (_mm256_set1_epi32(1), _mm256_set1_epi32(2));

@@ -433,9 +433,11 @@ fn an_aligned_mesh_reads_the_samples_the_bilinear_path_would_interpolate() {
 
 mod blender {
     use super::*;
+    #[cfg(feature = "render")]
     use crate::scene::Scene;
 
     /// A scene header: version and a camera looking at the water.
+    #[cfg(feature = "render")]
     const HEAD: &str = "version = 1\n[camera]\neye = [0.0, 12.0, 45.0]\ntarget = [0.0, 0.0, 0.0]\n\
                         up = [0.0, 1.0, 0.0]\nfov_y_deg = 55.0\nnear = 0.5\nfar = 1000.0\n";
 
@@ -521,6 +523,7 @@ mod blender {
         assert_eq!((g(0.0), g(1.0)), (1.0, 6.0));
     }
 
+    #[cfg(feature = "render")]
     #[test]
     fn a_blender_scene_parses_validates_and_renders_finite() {
         let text = "[water]\nmodel = 'fft'\nsize = [60.0, 60.0]\ncells = [32, 32]\n\
@@ -542,6 +545,7 @@ mod blender {
         assert!(ocean.cascades[0].fields.iter().flatten().all(|c| c.re.is_finite() && c.im.is_finite()));
     }
 
+    #[cfg(feature = "render")]
     #[test]
     fn bad_blender_keys_name_water_blender_and_a_clash_names_both_keys() {
         for (key, value) in [

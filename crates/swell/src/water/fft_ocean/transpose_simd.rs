@@ -53,15 +53,27 @@ pub(super) unsafe fn gather_rows(
             // SAFETY: every run read is inside `work` (checked above); pair p's output rows and
             // columns m0 .. m0 + 4 <= half and n - m0 - 4 .. n - m0 <= n are inside the block.
             unsafe {
+                let out = OutBlock { out, stride, m0, n };
                 if p == PAIR_HZ_DXX {
-                    pair_block::<true>(xs, ys, direct, mirror, out, stride, m0, n, neg_re);
+                    pair_block::<true>(xs, ys, direct, mirror, out, neg_re);
                 } else {
-                    pair_block::<false>(xs, ys, direct, mirror, out, stride, m0, n, neg_re);
+                    pair_block::<false>(xs, ys, direct, mirror, out, neg_re);
                 }
             }
         }
         m0 += 4;
     }
+}
+
+/// Where [`pair_block`] writes: the block `out` (rows `stride` apart, `n` columns), columns
+/// `m0 .. m0 + 4` and their mirrors.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+struct OutBlock {
+    out: *mut f64,
+    stride: usize,
+    m0: usize,
+    n: usize,
 }
 
 /// One pair's 4 x 4 blocks for columns m0 .. m0 + 4 and their mirrors, all R rows: `xs[k]` and
@@ -75,19 +87,16 @@ pub(super) unsafe fn gather_rows(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-#[allow(clippy::too_many_arguments)]
 unsafe fn pair_block<const ROT: bool>(
     xs: [*const f32; 5],
     ys: [*const f32; 5],
     direct: [f32; 4],
     mirror: [f32; 4],
-    out: *mut f64,
-    stride: usize,
-    m0: usize,
-    n: usize,
+    out: OutBlock,
     neg_re: std::arch::x86_64::__m256,
 ) {
     use std::arch::x86_64::*;
+    let OutBlock { out, stride, m0, n } = out;
 
     let conj = _mm256_setr_ps(0.0, -0.0, 0.0, -0.0, 0.0, -0.0, 0.0, -0.0);
     let (direct, mirror) = (direct.map(|f| _mm256_set1_ps(f)), mirror.map(|f| _mm256_set1_ps(f)));
