@@ -15,11 +15,12 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::sky_pass::SkyRays;
+use super::sky_pass::{SkyRays, SkyRow};
 use super::FrameContext;
+use crate::math::{Lanes, Vec3Lanes};
 use crate::raster::Framebuffer;
 use crate::scene::{Camera, WaterBody};
-use crate::shading::{lambert, shade_water_filtered, Lobe, NoBottom, UnresolvedSlopes, WaterLook};
+use crate::shading::{lambert, shade_water_run, Lobe, NoBottom, UnresolvedSlopes, WaterLook, WaterRun};
 
 /// Rows per task: the far field is a band just under the horizon.
 const ROWS_PER_TASK: usize = 8;
@@ -49,10 +50,12 @@ pub fn draw(
     let below = eye.y < 0.0;
     let from_below = if below { material.color * lambert(env, eye, -Vec3::Y) } else { Vec3::ZERO };
     let w = width as usize;
-    fb.color.par_chunks_mut(w).zip(fb.depth.par_chunks_mut(w)).enumerate().with_max_len(ROWS_PER_TASK).for_each(
-        |(y, (colors, depth))| {
+    fb.color.par_chunks_mut(w).zip(fb.depth.par_chunks_mut(w)).enumerate().with_max_len(ROWS_PER_TASK).for_each_init(
+        || (Vec::new(), Vec::new()),
+        |(xs, shaded): &mut (Vec<usize>, Vec<Vec3>), (y, (colors, depth))| {
             let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / height as f32;
             let row = rays.row(ndc_y);
+            xs.clear();
             for (x, (c, d)) in colors.iter_mut().zip(depth.iter_mut()).enumerate() {
                 if *d < 1.0 {
                     continue;
@@ -63,14 +66,44 @@ pub fn draw(
                     continue;
                 }
                 let ndc_x = 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
-                let dir = row.direction(ndc_x);
-                if dir.y >= 0.0 {
-                    continue; // the sky's
+                if row.direction(ndc_x).y < 0.0 {
+                    xs.push(x); // else the sky's
                 }
-                let p = eye + dir * (-eye.y / dir.y);
-                *c = shade_water_filtered(env, &look, lobe, p, Vec3::Y, 0.0, variance);
-                *d = FAR_FIELD_DEPTH;
+            }
+            // The row's far-field pixels, shaded eight at a time.
+            let run = FarRow { xs, row: &row, width: width as f32, eye, variance };
+            shaded.resize(xs.len(), Vec3::ZERO);
+            shade_water_run(env, &look, lobe, &run, shaded);
+            for (&x, c) in xs.iter().zip(shaded.iter()) {
+                colors[x] = *c;
+                depth[x] = FAR_FIELD_DEPTH;
             }
         },
     );
+}
+
+/// The pixels of one row that see the mean sea plane beyond the rings, as a run of water points.
+struct FarRow<'a> {
+    xs: &'a [usize],
+    row: &'a SkyRow,
+    width: f32,
+    eye: Vec3,
+    /// Every wave is unresolved out there.
+    variance: f32,
+}
+
+impl WaterRun for FarRow<'_> {
+    fn len(&self) -> usize {
+        self.xs.len()
+    }
+    #[inline(always)]
+    fn point(&self, i: usize) -> (Vec3, Vec3, f32) {
+        let ndc_x = 2.0 * (self.xs[i] as f32 + 0.5) / self.width - 1.0;
+        let dir = self.row.direction(ndc_x);
+        (self.eye + dir * (-self.eye.y / dir.y), Vec3::Y, 0.0)
+    }
+    #[inline(always)]
+    fn unresolved(&self, _: Vec3Lanes, _: Vec3Lanes) -> Lanes {
+        Lanes::splat(self.variance)
+    }
 }

@@ -23,7 +23,7 @@ use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use crate::raster::clip::view_outcode;
-use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
+use crate::raster::{draw_deferred_with, draw_with, ClipVertex, Cull, DrawScratch, Fragment, Framebuffer};
 use crate::scene::Shading;
 use crate::shading::SurfaceVarying;
 
@@ -39,6 +39,17 @@ const SHADE_TASK: usize = 4096;
 pub(crate) trait SurfaceShader: Sync {
     /// Radiance at one surface point.
     fn shade(&self, position: Vec3, normal: Vec3, foam: f32) -> Vec3;
+
+    /// Per-pixel shading of a run of pixels (one row's covered pixels, left to right): `out[i]`
+    /// gets the radiance of `pixels[i]`, whose interpolated normal is not yet unit length. The
+    /// default shades each with [`Self::shade`]; a shader may shade several at once instead, as long
+    /// as each pixel's colour depends on that pixel alone.
+    fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
+        for (f, o) in pixels.iter().zip(out.iter_mut()) {
+            let v = &f.varying;
+            *o = self.shade(v.position, v.normal.normalize_or(Vec3::Y), v.foam);
+        }
+    }
 }
 
 /// A triangle mesh as the shaded draw reads it: world positions (m), unit vertex normals, optional
@@ -184,10 +195,10 @@ impl ShadedDraw {
     }
 
     /// Per-pixel shading of the surface vertices already in `self.surface`.
+    /// Per-pixel shading, deferred: each visible pixel is shaded once, whatever the overdraw.
     fn draw_surface_pixels<S: SurfaceShader>(&mut self, fb: &mut Framebuffer, mesh: ShadedMesh, shader: &S) {
-        draw_with(&mut self.draw_surface, fb, &self.surface, mesh.indices, Cull::None, &|f| {
-            let v = &f.varying;
-            shader.shade(v.position, v.normal.normalize_or(Vec3::Y), v.foam)
+        draw_deferred_with(&mut self.draw_surface, fb, &self.surface, mesh.indices, Cull::None, &|pixels, out| {
+            shader.shade_pixels(pixels, out)
         });
     }
 }

@@ -7,10 +7,13 @@ use glam::{Vec3, Vec4};
 use super::sea_lod::FootprintFilter;
 use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use super::FrameContext;
+use crate::math::{Lanes, Vec3Lanes};
+use crate::raster::Fragment;
 use crate::raster::Framebuffer;
 use crate::scene::{TerrainBody, WaterBody};
 use crate::shading::{
-    shade_water, shade_water_filtered, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed, WaterLook,
+    shade_water, shade_water_filtered, shade_water_run, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed,
+    SurfaceVarying, WaterLook, WaterRun,
 };
 
 /// Water as [`shade_water`] sees it, with the specular lobe of its shading model; with a
@@ -31,6 +34,35 @@ impl SurfaceShader for WaterShader<'_> {
                 shade_water_filtered(self.env, &self.look, self.lobe, position, normal, foam, unresolved)
             }
             None => shade_water(self.env, &self.look, self.lobe, position, normal, foam),
+        }
+    }
+
+    /// Eight pixels at a time ([`shade_water_run`]).
+    fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
+        shade_water_run(self.env, &self.look, self.lobe, &Pixels { pixels, filter: self.filter }, out);
+    }
+}
+
+/// A row's run of water pixels, with the unbounded sea's filter when there is one.
+struct Pixels<'a> {
+    pixels: &'a [Fragment<SurfaceVarying>],
+    filter: Option<&'a FootprintFilter<'a>>,
+}
+
+impl WaterRun for Pixels<'_> {
+    fn len(&self) -> usize {
+        self.pixels.len()
+    }
+    #[inline(always)]
+    fn point(&self, i: usize) -> (Vec3, Vec3, f32) {
+        let v = &self.pixels[i].varying;
+        (v.position, v.normal, v.foam)
+    }
+    #[inline(always)]
+    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
+        match self.filter {
+            Some(f) => f.variance_lanes(position, normal),
+            None => Lanes::splat(0.0),
         }
     }
 }

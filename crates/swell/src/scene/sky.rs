@@ -4,6 +4,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{check_finite_vec, check_non_negative, check_range, Error, Result};
+use crate::math::Vec3Lanes;
 use crate::scene::Light;
 
 /// A sky that blends from a horizon colour to a zenith colour with the elevation of the view ray.
@@ -53,6 +54,19 @@ impl SunDisc {
         self.radiance * (k * k * (3.0 - 2.0 * k))
     }
 }
+impl SunDisc {
+    /// [`Self::radiance`] along eight unit directions.
+    #[inline(always)]
+    pub fn radiance_lanes(&self, dir: Vec3Lanes) -> Vec3Lanes {
+        let c = dir.dot1(self.to_sun);
+        let rim = 1.0 - self.cos_radius;
+        let edge = (c - (self.cos_radius - rim * 3.0)) / (rim * 3.0);
+        let k = edge.min(1.0);
+        let weight = edge.le(0.0).select(0.0, k * k * (3.0 - 2.0 * k));
+        Vec3Lanes::splat(self.radiance).scale(weight)
+    }
+}
+
 impl Default for Sky {
     fn default() -> Self {
         Self {
@@ -101,6 +115,14 @@ impl Sky {
             cos_radius: (0.5 * self.sun_size_deg).to_radians().cos(),
             radiance: color * self.sun_intensity,
         })
+    }
+
+    /// [`Self::radiance`] along eight unit directions: the same formula lane by lane.
+    #[inline(always)]
+    pub fn radiance_lanes(&self, dir: Vec3Lanes) -> Vec3Lanes {
+        let up = Vec3Lanes::splat(self.horizon).lerp(Vec3Lanes::splat(self.zenith), dir.y.max(0.0).sqrt());
+        let down = Vec3Lanes::splat(self.horizon).lerp(Vec3Lanes::splat(self.ground), (-dir.y * 8.0).min(1.0));
+        dir.y.lt(0.0).select3(down, up)
     }
 
     /// Radiance seen along the unit world direction `dir`.

@@ -2,6 +2,7 @@
 
 use glam::Vec3;
 
+use crate::math::Vec3Lanes;
 use crate::scene::{Light, Sky, SunDisc};
 
 /// Everything that lights a surface: the lights, the ambient term and the sky (for reflections).
@@ -27,6 +28,18 @@ impl Environment<'_> {
         let sky = self.sky.radiance(dir);
         match &self.sun {
             Some(sun) => sky + sun.radiance(dir),
+            None => sky,
+        }
+    }
+}
+
+impl Environment<'_> {
+    /// [`Self::sky_radiance`] along eight unit directions.
+    #[inline(always)]
+    pub fn sky_radiance_lanes(&self, dir: Vec3Lanes) -> Vec3Lanes {
+        let sky = self.sky.radiance_lanes(dir);
+        match &self.sun {
+            Some(sun) => sky + sun.radiance_lanes(dir),
             None => sky,
         }
     }

@@ -17,8 +17,11 @@ mod water_optics;
 pub use fresnel::fresnel_dielectric;
 pub use lighting::{lambert, Environment};
 pub use reflection_map::ReflectionMap;
-pub use slope_variance::{mean_fresnel, spread_normals, widened_lobe, UnresolvedSlopes};
+pub use slope_variance::{mean_fresnel, widened_lobe, UnresolvedSlopes};
 pub use specular::{shade_opaque, specular, Lobe, OpaqueLook};
 pub use surface_varying::SurfaceVarying;
 pub use terrain_color::shade_terrain;
-pub use water_optics::{refract, shade_water, shade_water_filtered, FlatBottom, NoBottom, Seabed, WaterLook};
+pub use water_optics::{
+    refract, shade_water, shade_water_filtered, shade_water_lanes, shade_water_run, FlatBottom, NoBottom, Seabed,
+    WaterLook, WaterPoints, WaterRun,
+};

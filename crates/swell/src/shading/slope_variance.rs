@@ -15,6 +15,8 @@
 
 use glam::Vec3;
 
+use crate::math::{fast_exp2, fast_log2, fast_pow, Lanes, Vec3Lanes};
+
 /// Entries of the cut-off table (log-spaced wavenumbers).
 const TABLE: usize = 64;
 
@@ -76,7 +78,7 @@ impl UnresolvedSlopes {
         if !(k_cut > 0.0) {
             return self.total;
         }
-        let x = (k_cut.ln() - self.log_k0) * self.inv_step;
+        let x = (fast_log2(k_cut) * std::f32::consts::LN_2 - self.log_k0) * self.inv_step;
         if x <= 0.0 {
             return self.table[0];
         }
@@ -93,44 +95,95 @@ impl UnresolvedSlopes {
     pub fn unresolved(&self, footprint: f32) -> f32 {
         self.above(std::f32::consts::PI / footprint.max(1e-6))
     }
-}
 
-/// Bruneton et al.'s fit of the Fresnel reflectance of water averaged over Gaussian slopes of
-/// deviation `sigma_v` along the view, for the view at `cos_v` to the mean normal; `sigma_v = 0`
-/// gives Schlick's `(1 - cos)^5` without the normal-incidence term, which [`mean_fresnel`] adds.
-fn bruneton_fresnel(cos_v: f32, sigma_v: f32) -> f32 {
-    let c = (1.0 - cos_v.clamp(0.0, 1.0)).max(0.0);
-    c.powf(5.0 * (-2.69 * sigma_v).exp()) / (1.0 + 22.7 * sigma_v.powf(1.5))
+    /// [`Self::unresolved`] of eight footprints: the table index computed for all lanes at once,
+    /// then one table read per lane.
+    #[inline(always)]
+    pub fn unresolved_lanes(&self, footprint: Lanes) -> Lanes {
+        if self.total == 0.0 {
+            return Lanes::splat(0.0);
+        }
+        let k_cut = std::f32::consts::PI / footprint.max(1e-6);
+        let x = (k_cut.map(fast_log2) * std::f32::consts::LN_2 - self.log_k0) * self.inv_step;
+        let last = (TABLE - 1) as f32;
+        Lanes::from_fn(|l| {
+            let x = x.0[l];
+            if !(x < last) {
+                // Past the table (or a NaN footprint, which `above` also reads as no cut).
+                return if x >= last { 0.0 } else { self.total };
+            }
+            let x = x.max(0.0);
+            let i = x as usize;
+            let f = x - i as f32;
+            self.table[i] * (1.0 - f) + self.table[i + 1] * f
+        })
+    }
 }
 
 /// Mean Fresnel reflectance over slopes of total variance `variance` (both axes; isotropic, so
 /// `sigma_v^2 = variance / 2`), for a view at `cos_v` to the mean normal and normal-incidence
-/// reflectance `r0`.
+/// reflectance `r0`: Bruneton et al.'s fit `(1 - cos_v)^(5 e^(-2.69 sigma_v)) / (1 + 22.7
+/// sigma_v^1.5)` of the reflectance averaged over Gaussian slopes, plus the normal-incidence
+/// term; `variance = 0` gives Schlick's approximation. One lane of [`mean_fresnel_lanes`].
 pub fn mean_fresnel(cos_v: f32, variance: f32, r0: f32) -> f32 {
+    mean_fresnel_lanes(Lanes::splat(cos_v), Lanes::splat(variance), r0).0[0]
+}
+
+/// [`mean_fresnel`] per lane, the powers by [`fast_exp2`] and [`fast_pow`] (relative error
+/// below 1e-4).
+#[inline(always)]
+pub fn mean_fresnel_lanes(cos_v: Lanes, variance: Lanes, r0: f32) -> Lanes {
     let sigma_v = (0.5 * variance.max(0.0)).sqrt();
-    (r0 + (1.0 - r0) * bruneton_fresnel(cos_v, sigma_v)).clamp(0.0, 1.0)
+    let c = (1.0 - cos_v.max(0.0).min(1.0)).max(0.0);
+    let exponent = 5.0 * (-2.69 * std::f32::consts::LOG2_E * sigma_v).map(fast_exp2);
+    let powered = Lanes::from_fn(|i| fast_pow(c.0[i], exponent.0[i]));
+    let mean = powered / (1.0 + 22.7 * sigma_v * sigma_v.sqrt());
+    (r0 + (1.0 - r0) * mean).max(0.0).min(1.0)
 }
 
 /// A Blinn-Phong exponent widened by unresolved slopes of total variance `variance`: its
 /// equivalent Beckmann roughness `m^2 = 2 / (s + 2)` (Walter et al. 2007) grows by the variance,
 /// `s' = 2 / (m^2 + variance) - 2`, and the returned weight `(s' + 2) / (s + 2)` keeps the
 /// highlight's energy (the lobe's integral over the hemisphere is proportional to 1 / (s + 2)):
-/// the glitter spreads and dims, it does not vanish or brighten.
+/// the glitter spreads and dims, it does not vanish or brighten. No variance leaves the lobe as it
+/// is. One lane of [`widened_lobe_lanes`].
 pub fn widened_lobe(shininess: f32, variance: f32) -> (f32, f32) {
-    let m2 = 2.0 / (shininess.max(0.0) + 2.0) + variance.max(0.0);
-    let s = (2.0 / m2 - 2.0).max(0.0);
-    (s, (s + 2.0) / (shininess.max(0.0) + 2.0))
+    let (s, w) = widened_lobe_lanes(shininess, Lanes::splat(variance));
+    (s.0[0], w.0[0])
 }
 
-/// Two unit normals spread about `n` by the slope deviation of total variance `variance`, tilted
-/// by ±sigma towards and away from `to_eye` in the plane of incidence: where the reflected sky is
-/// averaged, so a rough far sea reflects the sky above the horizon as well as the horizon itself.
-/// The sky varies with elevation only, which tilts across the plane of incidence barely change,
-/// so two samples stand for the four of a full cross.
-pub fn spread_normals(n: Vec3, to_eye: Vec3, variance: f32) -> [Vec3; 2] {
+/// [`widened_lobe`] per lane: (exponents, weights).
+#[inline(always)]
+pub fn widened_lobe_lanes(shininess: f32, variance: Lanes) -> (Lanes, Lanes) {
+    let s0 = shininess.max(0.0);
+    let variance = variance.max(0.0);
+    let m2 = 2.0 / (s0 + 2.0) + variance;
+    let some = variance.gt(0.0);
+    let s = some.select((2.0 / m2 - 2.0).max(0.0), s0);
+    (s, some.select((s + 2.0) / (s0 + 2.0), 1.0))
+}
+
+/// Two unit normals per lane spread about `n` by the slope deviation of total variance
+/// `variance`, tilted by ±sigma towards and away from `to_eye` in the plane of incidence: where
+/// the reflected sky is averaged, so a rough far sea reflects the sky above the horizon as well as
+/// the horizon itself. The sky varies with elevation mostly, which tilts across the plane of
+/// incidence barely change, so two samples stand for the four of a full cross. Where `to_eye` is
+/// along `n` any tangent serves (glam's `any_orthonormal_vector`); the first `live` lanes count.
+#[inline(always)]
+pub fn spread_normals_lanes(n: Vec3Lanes, to_eye: Vec3Lanes, variance: Lanes, live: usize) -> [Vec3Lanes; 2] {
     let sigma = (0.5 * variance.max(0.0)).sqrt();
-    let t = (to_eye - n * n.dot(to_eye)).normalize_or(n.any_orthonormal_vector());
-    [(n + sigma * t).normalize_or(n), (n - sigma * t).normalize_or(n)]
+    let mut t = (to_eye - n.scale(n.dot(to_eye))).normalize_or(Vec3::ZERO);
+    for i in 0..live {
+        if t.lane(i) == Vec3::ZERO {
+            t.set_lane(i, n.lane(i).any_orthonormal_vector());
+        }
+    }
+    let tilt = t.scale(sigma);
+    let unit_or_n = |s: Vec3Lanes| {
+        let rcp = 1.0 / s.length();
+        rcp.abs().lt(f32::INFINITY).and(rcp.abs().gt(0.0)).select3(s.scale(rcp), n)
+    };
+    [unit_or_n(n + tilt), unit_or_n(n - tilt)]
 }
 
 #[cfg(test)]
@@ -146,12 +199,18 @@ mod tests {
         assert!((s.above(0.5) - 0.03).abs() < 1e-6, "{}", s.above(0.5));
         assert!((s.above(5.0) - 0.02).abs() < 1e-6, "{}", s.above(5.0));
         assert_eq!(s.above(100.0), 0.0);
-        // Monotone in the cut.
+        // Monotone in the cut (to within the fast logarithm's 1e-6 in the table index).
         let mut last = f32::INFINITY;
         for i in 0..200 {
             let v = s.above(0.01 * 1.05f32.powi(i));
-            assert!(v <= last + 1e-9);
+            assert!(v <= last + 1e-7);
             last = v;
+        }
+        // The batched look-up is the scalar one, lane by lane.
+        let footprints = crate::math::Lanes::from_fn(|i| 0.01 * 1.3f32.powi(i as i32 % 40));
+        let batch = s.unresolved_lanes(footprints);
+        for i in 0..crate::math::LANES {
+            assert_eq!(batch.0[i], s.unresolved(footprints.0[i]), "lane {i}");
         }
         assert_eq!(UnresolvedSlopes::default().above(1.0), 0.0);
     }
