@@ -35,6 +35,10 @@ pub struct Renderer {
     water_draw: shaded_draw::ShadedDraw,
     /// The mirrored terrain the water reflects.
     reflection_scratch: reflection_pass::Scratch,
+    /// The sky ready to look up, rebuilt when `[sky]` changes (a Preetham sky is tabulated).
+    sky: Option<crate::scene::SkyRadiance>,
+    /// The scene's lights as the sky drives them (`[sky] sun_drives_light`).
+    lights: Vec<crate::scene::Light>,
 }
 
 impl Renderer {
@@ -60,12 +64,15 @@ impl Renderer {
             fb.resize(w, h);
         }
         let scene = &world.scene;
+        let sky = self.sky.get_or_insert_with(|| crate::scene::SkyRadiance::new(&scene.sky));
+        sky.update(&scene.sky);
+        scene.sky.drive_lights(&scene.lights, &mut self.lights);
         let frame = FrameContext {
             env: Environment {
-                lights: &scene.lights,
+                lights: &self.lights,
                 ambient: scene.render.ambient,
-                sky: &scene.sky,
-                sun: scene.sky.sun(&scene.lights),
+                sky,
+                sun: scene.sky.sun(&self.lights),
                 eye: scene.camera.eye,
                 time: world.time(),
             },
@@ -86,7 +93,7 @@ impl Renderer {
             water_pass::draw(fb, &frame, water, &mut self.water_draw, world.terrain.as_ref(), reflection.as_ref());
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
-        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
+        sky_pass::draw(fb, &scene.camera, frame.env.sky, frame.env.sun.as_ref());
         if let Some(water) = &world.water {
             overlay_pass::draw(fb, &frame, &water.mesh, scene.render.wireframe, scene.render.normals);
         }

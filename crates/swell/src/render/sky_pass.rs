@@ -6,18 +6,17 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::raster::Framebuffer;
-use crate::scene::{Camera, Scene, SunDisc};
+use crate::scene::{Camera, SkyRadiance, SunDisc};
 
 /// Clears depth to the far plane (colour is left for [`draw`]).
 pub fn clear_depth(fb: &mut Framebuffer) {
     fb.depth.par_iter_mut().for_each(|d| *d = 1.0);
 }
 
-/// Fills every pixel still at the far plane with the sky of `scene` (and its sun disc, if any).
-pub fn draw(fb: &mut Framebuffer, scene: &Scene, sun: Option<&SunDisc>) {
+/// Fills every pixel still at the far plane with `sky` seen by `camera` (and its sun disc, if any).
+pub fn draw(fb: &mut Framebuffer, camera: &Camera, sky: &SkyRadiance, sun: Option<&SunDisc>) {
     let (width, height) = (fb.width(), fb.height());
-    let rays = SkyRays::new(&scene.camera, width as f32 / height as f32);
-    let sky = &scene.sky;
+    let rays = SkyRays::new(camera, width as f32 / height as f32);
     fb.fill_background(|y| {
         let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / height as f32;
         let row = rays.row(ndc_y);

@@ -19,7 +19,7 @@ struct WaterShader<'a> {
 
 impl SurfaceShader for WaterShader<'_> {
     fn shade(&self, position: Vec3, normal: Vec3, foam: f32) -> Vec3 {
-        shade_water(self.env, &self.look, self.lobe, position, normal, foam)
+        self.env.haze(position, shade_water(self.env, &self.look, self.lobe, position, normal, foam))
     }
 }
 

@@ -10,7 +10,10 @@ mod render_settings;
 mod scene;
 mod sea_stats;
 mod shading_model;
+mod preetham;
 mod sky;
+mod sky_model;
+mod sky_radiance;
 mod terrain_body;
 mod terrain_material;
 mod terrain_spec;
@@ -28,7 +31,10 @@ pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_T
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
 pub use sea_stats::{sea_stats, SeaStats};
 pub use shading_model::Shading;
-pub use sky::{Sky, SunDisc};
+pub use preetham::{sun_transmittance, zenith_chromaticity, zenith_luminance, Perez, PreethamSky, TURBIDITY_RANGE};
+pub use sky::{Sky, SunDisc, SunProfile};
+pub use sky_model::SkyModel;
+pub use sky_radiance::{SkyRadiance, TABLE_SIDE};
 pub use terrain_body::TerrainBody;
 pub use terrain_material::TerrainMaterial;
 pub use terrain_spec::{

@@ -61,9 +61,11 @@ impl World {
             Some(spec) => {
                 let model = spec.model.build()?;
                 let mesh = SurfaceMesh::new(spec.surface.grid()?);
-                let texture = spec.material.load_texture()?;
                 let placement = spec.surface.placement()?;
-                Some(WaterBody { model, mesh, placement, material: spec.material.clone(), texture })
+                // A flowing model (the river) slides a texture with its flow.
+                let material = spec.material.with_flow(spec.model.params().surface_flow(), &placement);
+                let texture = material.load_texture()?;
+                Some(WaterBody { model, mesh, placement, material, texture })
             }
             None => None,
         };

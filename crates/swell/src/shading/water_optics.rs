@@ -227,6 +227,7 @@ mod tests {
     }
 
     fn env<'a>(lights: &'a [Light], sky: &'a Sky) -> Environment<'a> {
+        let sky = Box::leak(Box::new(crate::scene::SkyRadiance::new(sky)));
         Environment { lights, ambient: Vec3::splat(0.1), sky, sun: None, eye: Vec3::new(0.0, 10.0, 0.0), time: 0.0 }
     }
 
