@@ -291,7 +291,8 @@ impl Sky {
     }
 
     /// The gradient sky along unit `dir`.
-    fn gradient(&self, dir: Vec3) -> Vec3 {
+    #[inline]
+    pub(crate) fn gradient(&self, dir: Vec3) -> Vec3 {
         if dir.y >= 0.0 {
             // sqrt keeps the bright horizon band narrow, as in a clear sky.
             self.horizon.lerp(self.zenith, dir.y.sqrt())

@@ -9,7 +9,7 @@
 //! hemisphere onto the unit disc with cells of 1.8° at the horizon and 3.6° at the zenith at
 //! [`TABLE_SIDE`] = 128: one division per lookup and no trigonometry.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
 use super::preetham::PreethamSky;
@@ -27,7 +27,8 @@ pub struct SkyRadiance {
     /// `preetham`: linear RGB radiance at the centres of a [`TABLE_SIDE`]² grid over
     /// u, v in [−1, 1] (row v, column u), cells outside the unit disc holding the horizon in
     /// their direction; empty for `gradient`.
-    table: Vec<Vec3>,
+    /// (16-byte `Vec3A` entries: one aligned SIMD load and lerp each.)
+    table: Vec<Vec3A>,
 }
 
 impl SkyRadiance {
@@ -59,11 +60,11 @@ impl SkyRadiance {
         }
         let sky = self.sky;
         let model = PreethamSky::new(sky.turbidity, sky.to_sun());
-        self.table.resize(TABLE_SIDE * TABLE_SIDE, Vec3::ZERO);
+        self.table.resize(TABLE_SIDE * TABLE_SIDE, Vec3A::ZERO);
         self.table.par_chunks_mut(TABLE_SIDE).enumerate().for_each(|(j, row)| {
             let v = cell_centre(j);
             for (i, out) in row.iter_mut().enumerate() {
-                *out = sky.preetham(&model, from_disc(cell_centre(i), v));
+                *out = sky.preetham(&model, from_disc(cell_centre(i), v)).into();
             }
         });
     }
@@ -73,7 +74,7 @@ impl SkyRadiance {
     #[inline]
     pub fn radiance(&self, dir: Vec3) -> Vec3 {
         if self.table.is_empty() {
-            return self.sky.radiance(dir);
+            return self.sky.gradient(dir);
         }
         if dir.y >= 0.0 {
             let k = 1.0 / (1.0 + dir.y);
@@ -85,17 +86,23 @@ impl SkyRadiance {
     }
 
     /// Bilinear lookup at disc coordinates (u, v).
+    #[inline]
     fn lookup(&self, u: f32, v: f32) -> Vec3 {
-        let n = TABLE_SIDE as f32;
-        let fx = ((u + 1.0) * 0.5 * n - 0.5).clamp(0.0, n - 1.0);
-        let fy = ((v + 1.0) * 0.5 * n - 0.5).clamp(0.0, n - 1.0);
-        let (i, j) = (fx as usize, fy as usize);
-        let (i1, j1) = ((i + 1).min(TABLE_SIDE - 1), (j + 1).min(TABLE_SIDE - 1));
-        let (tx, ty) = (fx - i as f32, fy - j as f32);
-        let t = &self.table;
-        let top = t[j * TABLE_SIDE + i].lerp(t[j * TABLE_SIDE + i1], tx);
-        let bottom = t[j1 * TABLE_SIDE + i].lerp(t[j1 * TABLE_SIDE + i1], tx);
-        top.lerp(bottom, ty)
+        // Cell coordinates, clamped to the centres of the edge cells (max/min also send NaN to 0).
+        const HALF: f32 = 0.5 * TABLE_SIDE as f32;
+        const LAST: f32 = (TABLE_SIDE - 2) as f32;
+        let fx = (u * HALF + (HALF - 0.5)).max(0.0);
+        let fy = (v * HALF + (HALF - 0.5)).max(0.0);
+        // The lower corner stays one short of the last cell so that its neighbour exists; the
+        // weight then reaches 1 at the last centre.
+        let (bx, by) = (fx.min(LAST), fy.min(LAST));
+        let (i, j) = (bx as usize, by as usize);
+        let (tx, ty) = ((fx - i as f32).min(1.0), (fy - j as f32).min(1.0));
+        let k = j * TABLE_SIDE + i;
+        let t = &self.table[k..k + TABLE_SIDE + 2];
+        let top = t[0].lerp(t[1], tx);
+        let bottom = t[TABLE_SIDE].lerp(t[TABLE_SIDE + 1], tx);
+        top.lerp(bottom, ty).into()
     }
 
     /// Aerial perspective: `color` of a surface at world `p` seen from `eye`, faded towards the

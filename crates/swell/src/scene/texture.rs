@@ -83,19 +83,20 @@ impl Texture {
     ///
     /// Like [`Texture::procedural_water`] it is a sum of sines with integer wave numbers per tile
     /// (so it tiles exactly) and fixed phases (so it is the same on every run); here the wave
-    /// numbers across (u) are 4 to 13 and along (v) 1 to 2, so each feature is several times
-    /// longer than it is wide.
+    /// numbers across (u) are 3 to 7 and along (v) 1 to 2, so each feature is several times
+    /// longer than it is wide, yet broad enough for a mesh shaded per vertex (a few vertices
+    /// per streak) to draw it.
     pub fn procedural_streaks(base: Vec3) -> Self {
         const SIDE: u32 = 256;
         // (k_u, k_v, phase, weight): the first four are the streaks, the last two slow swells of
         // brightness along the flow that make the motion readable at a glance.
         const WAVES: [(f32, f32, f32, f32); 8] = [
-            (5.0, 1.0, 0.4, 1.0),
-            (-7.0, 1.0, 2.3, 0.9),
-            (9.0, -2.0, 4.4, 0.7),
-            (-13.0, 2.0, 1.1, 0.5),
+            (3.0, 1.0, 0.4, 1.0),
+            (-5.0, 1.0, 2.3, 0.9),
+            (7.0, -2.0, 4.4, 0.7),
+            (-6.0, 2.0, 1.1, 0.5),
             (4.0, -1.0, 5.6, 0.8),
-            (11.0, 1.0, 3.0, 0.6),
+            (5.0, 1.0, 3.0, 0.6),
             (1.0, 2.0, 0.9, 0.7),
             (-2.0, 1.0, 2.0, 0.6),
         ];

@@ -4,8 +4,8 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::{Shading, Texture, WaterPlacement};
-use crate::water::SurfaceFlow;
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
+use crate::water::SurfaceFlow;
 
 /// Most one absorption coefficient may be, 1/m: light is then gone within a millimetre.
 pub const MAX_ABSORPTION: f32 = 1000.0;
