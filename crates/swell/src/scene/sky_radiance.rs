@@ -48,6 +48,12 @@ impl SkyRadiance {
         }
     }
 
+    /// Whether the sky is looked up in a table (smooth at the scale of pixels, so callers may
+    /// sample it sparsely) rather than evaluated directly.
+    pub fn is_tabulated(&self) -> bool {
+        !self.table.is_empty()
+    }
+
     /// The keys it was built for.
     pub fn sky(&self) -> &Sky {
         &self.sky
