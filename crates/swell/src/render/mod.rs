@@ -41,6 +41,10 @@ pub struct Renderer {
     reflection_scratch: reflection_pass::Scratch,
     /// The unbounded sea's camera-following mesh.
     sea: sea_lod::SeaLod,
+    /// The sky ready to look up, rebuilt when `[sky]` changes (a Preetham sky is tabulated).
+    sky: Option<crate::scene::SkyRadiance>,
+    /// The scene's lights as the sky drives them (`[sky] sun_drives_light`).
+    lights: Vec<crate::scene::Light>,
 }
 
 impl Renderer {
@@ -66,12 +70,15 @@ impl Renderer {
             fb.resize(w, h);
         }
         let scene = &world.scene;
+        let sky = self.sky.get_or_insert_with(|| crate::scene::SkyRadiance::new(&scene.sky));
+        sky.update(&scene.sky);
+        scene.sky.drive_lights(&scene.lights, &mut self.lights);
         let frame = FrameContext {
             env: Environment {
-                lights: &scene.lights,
+                lights: &self.lights,
                 ambient: scene.render.ambient,
-                sky: &scene.sky,
-                sun: scene.sky.sun(&scene.lights),
+                sky,
+                sun: scene.sky.sun(&self.lights),
                 eye: scene.camera.eye,
                 time: world.time(),
             },
@@ -125,7 +132,7 @@ impl Renderer {
             }
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
-        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
+        sky_pass::draw(fb, &scene.camera, frame.env.sky, frame.env.sun.as_ref());
         if let Some(water) = &world.water {
             overlay_pass::draw(fb, &frame, &water.mesh, scene.render.wireframe, scene.render.normals);
         }

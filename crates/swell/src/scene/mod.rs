@@ -4,6 +4,7 @@
 mod camera;
 mod light;
 mod memory_estimate;
+mod preetham;
 mod presets;
 mod render_settings;
 #[allow(clippy::module_inception)]
@@ -11,6 +12,8 @@ mod scene;
 mod sea_stats;
 mod shading_model;
 mod sky;
+mod sky_model;
+mod sky_radiance;
 mod terrain_body;
 mod terrain_material;
 mod terrain_spec;
@@ -24,12 +27,15 @@ mod world;
 
 pub use camera::Camera;
 pub use light::{Incident, Light};
+pub use preetham::{sun_transmittance, zenith_chromaticity, zenith_luminance, Perez, PreethamSky, TURBIDITY_RANGE};
 pub use presets::{preset, Preset, PRESETS};
 pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_THREADS};
 pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
 pub use sea_stats::{sea_stats, SeaStats};
 pub use shading_model::Shading;
-pub use sky::{Sky, SunDisc};
+pub use sky::{Sky, SunDisc, SunProfile};
+pub use sky_model::SkyModel;
+pub use sky_radiance::{SkyRadiance, TABLE_SIDE};
 pub use terrain_body::TerrainBody;
 pub use terrain_material::TerrainMaterial;
 pub use terrain_spec::{

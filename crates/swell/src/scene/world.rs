@@ -70,8 +70,10 @@ impl World {
             Some(spec) => {
                 let model = spec.model.build()?;
                 let mesh = SurfaceMesh::new(spec.surface.grid()?);
-                let texture = spec.material.load_texture()?;
                 let placement = spec.surface.placement()?;
+                // A flowing model (the river) slides a texture with its flow.
+                let material = spec.material.with_flow(spec.model.params().surface_flow(), &placement);
+                let texture = material.load_texture()?;
                 let mut components = Vec::new();
                 model.slope_components(&mut components);
                 // A uniform scale keeps slopes and divides wavenumbers: the table is in world units.
@@ -80,16 +82,7 @@ impl World {
                 }
                 let slopes = UnresolvedSlopes::from_components(&components);
                 let extent = scene.water_extent().expect("the scene has water");
-                Some(WaterBody {
-                    model,
-                    mesh,
-                    placement,
-                    material: spec.material.clone(),
-                    texture,
-                    extent,
-                    lod: spec.surface.lod,
-                    slopes,
-                })
+                Some(WaterBody { model, mesh, placement, material, texture, extent, lod: spec.surface.lod, slopes })
             }
             None => None,
         };

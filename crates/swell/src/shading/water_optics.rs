@@ -248,6 +248,12 @@ pub fn shade_water_lanes(
         let foam_light = lambert_lanes(env, p, Vec3Lanes::splat(Vec3::Y)) * m.foam_color;
         water = foam.gt(0.0).select3(water.lerp(foam_light, foam.min(1.0)), water);
     }
+    if env.sky.sky().haze_distance > 0.0 {
+        // Aerial perspective: distant water fades into the horizon's haze.
+        for i in 0..live {
+            water.set_lane(i, env.haze(p.lane(i), water.lane(i)));
+        }
+    }
     water
 }
 
@@ -452,6 +458,7 @@ mod tests {
     }
 
     fn env<'a>(lights: &'a [Light], sky: &'a Sky) -> Environment<'a> {
+        let sky = Box::leak(Box::new(crate::scene::SkyRadiance::new(sky)));
         Environment { lights, ambient: Vec3::splat(0.1), sky, sun: None, eye: Vec3::new(0.0, 10.0, 0.0), time: 0.0 }
     }
 
