@@ -37,9 +37,37 @@ impl SurfaceShader for WaterShader<'_> {
         }
     }
 
-    /// Eight pixels at a time ([`shade_water_run`]).
+    /// A row's pixels many at a time ([`shade_water_run`]).
     fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
         shade_water_run(self.env, &self.look, self.lobe, &Pixels { pixels, filter: self.filter }, out);
+    }
+
+    /// Many vertices or faces at a time ([`shade_water_run`]).
+    fn shade_points(&self, points: &[(Vec3, Vec3, f32)], out: &mut [Vec3]) {
+        shade_water_run(self.env, &self.look, self.lobe, &Points { points, filter: self.filter }, out);
+    }
+}
+
+/// A run of water vertices or faces, with the unbounded sea's filter when there is one.
+struct Points<'a> {
+    points: &'a [(Vec3, Vec3, f32)],
+    filter: Option<&'a FootprintFilter<'a>>,
+}
+
+impl WaterRun for Points<'_> {
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+    #[inline(always)]
+    fn point(&self, i: usize) -> (Vec3, Vec3, f32) {
+        self.points[i]
+    }
+    #[inline(always)]
+    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
+        match self.filter {
+            Some(f) => f.variance_lanes(position, normal),
+            None => Lanes::splat(0.0),
+        }
     }
 }
 
