@@ -62,7 +62,7 @@ impl Clipmap {
         if !(1..=16).contains(&levels) {
             return Err(Error::out_of_range("water.lod.levels", levels, "[1, 16]"));
         }
-        if !(8..=1024).contains(&ring_cells) || ring_cells % 4 != 0 {
+        if !(8..=1024).contains(&ring_cells) || !ring_cells.is_multiple_of(4) {
             return Err(Error::out_of_range("water.lod.ring_cells", ring_cells, "multiples of 4 in [8, 1024]"));
         }
         if !(spacing.is_finite() && spacing > 0.0) {

@@ -113,7 +113,7 @@ impl LodSettings {
             return Err(Error::out_of_range("water.lod.levels", self.levels, format!("[1, {MAX_LOD_LEVELS}]")));
         }
         let (lo, hi) = LOD_RING_CELLS;
-        if !(lo..=hi).contains(&self.ring_cells) || self.ring_cells % 4 != 0 {
+        if !(lo..=hi).contains(&self.ring_cells) || !self.ring_cells.is_multiple_of(4) {
             return Err(Error::out_of_range(
                 "water.lod.ring_cells",
                 self.ring_cells,

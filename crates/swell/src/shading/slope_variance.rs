@@ -75,7 +75,7 @@ impl UnresolvedSlopes {
         if self.total == 0.0 {
             return 0.0;
         }
-        if !(k_cut > 0.0) {
+        if k_cut.is_nan() || k_cut <= 0.0 {
             return self.total;
         }
         let x = (fast_log2(k_cut) * std::f32::consts::LN_2 - self.log_k0) * self.inv_step;
@@ -108,9 +108,11 @@ impl UnresolvedSlopes {
         let last = (TABLE - 1) as f32;
         Lanes::from_fn(|l| {
             let x = x.0[l];
-            if !(x < last) {
-                // Past the table (or a NaN footprint, which `above` also reads as no cut).
-                return if x >= last { 0.0 } else { self.total };
+            if x.is_nan() {
+                return self.total; // read as no cut, as `above` does
+            }
+            if x >= last {
+                return 0.0; // past the table
             }
             let x = x.max(0.0);
             let i = x as usize;

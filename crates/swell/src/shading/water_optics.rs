@@ -227,7 +227,7 @@ pub fn shade_water_lanes(
     for i in 0..bottom_lanes {
         let t = refracted.lane(i);
         // Beyond the critical angle `refract` gives no ray (a NaN lane here): only the body shows.
-        if !(t.y < -1e-4) {
+        if t.y.is_nan() || t.y >= -1e-4 {
             continue;
         }
         if let Some((path, height, albedo)) = bottom_hit(look.seabed, p.lane(i), t) {
@@ -263,6 +263,10 @@ pub fn shade_water_lanes(
 pub trait WaterRun: Sync {
     /// Number of points.
     fn len(&self) -> usize;
+    /// Whether there are none.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
     /// Point `i`, `i < len()`.
     fn point(&self, i: usize) -> (Vec3, Vec3, f32);
     /// Unresolved slope variance of a batch of points (0: none).
