@@ -4,7 +4,7 @@
 
 use swell::closed_set::ClosedSet;
 use swell::export::{ExrCompression, NormalSpace};
-use swell::scene::{Scene, Shading, WaterModelSpec, TERRAIN_GENERATORS, WATER_MODELS};
+use swell::scene::{Scene, Shading, SkyModel, WaterModelSpec, TERRAIN_GENERATORS, WATER_MODELS};
 use swell::spectrum::{SpectrumKind, SpreadingFunction};
 
 fn scene_format_doc() -> String {
@@ -38,6 +38,7 @@ fn every_closed_set_round_trips_through_its_names() {
     round_trips::<SpreadingFunction>();
     round_trips::<ExrCompression>();
     round_trips::<NormalSpace>();
+    round_trips::<SkyModel>();
 }
 
 #[test]
@@ -47,11 +48,30 @@ fn the_scene_format_documents_every_member() {
         .iter()
         .chain(SpectrumKind::NAMES)
         .chain(SpreadingFunction::NAMES)
+        .chain(SkyModel::NAMES)
         .chain(WATER_MODELS)
         .chain(TERRAIN_GENERATORS);
     for name in names {
         let listed = doc.contains(&format!("`{name}`")) || doc.contains(&format!("\"{name}\""));
         assert!(listed, "docs/scene-format.md does not list `{name}`");
+    }
+}
+
+#[test]
+fn every_sky_model_renders_finite_and_round_trips() {
+    for &model in SkyModel::ALL {
+        let text = format!(
+            "[camera]\neye = [0.0, 20.0, 60.0]\ntarget = [0.0, 0.0, 0.0]\n\
+             [[light]]\ntype = 'directional'\ndirection = [0.3, -1.0, 0.2]\n\
+             [sky]\nmodel = '{}'\nhaze_distance = 80.0\nsun_drives_light = true\n\
+             [water]\nmodel = 'sines'\nsize = [40.0, 40.0]\ncells = [16, 16]\n[render]\nwidth = 64\nheight = 36\n",
+            model.name()
+        );
+        let scene = Scene::from_toml(&text, "t").unwrap_or_else(|e| panic!("{model}: {e}"));
+        assert_eq!(Scene::from_toml(&scene.to_toml(), "again").unwrap(), scene, "{model}");
+        let world = swell::scene::World::new(scene).unwrap();
+        let image = swell::render::Renderer::new().render(&world).color.clone();
+        assert!(image.iter().all(|c| c.is_finite()), "{model}");
     }
 }
 

@@ -164,7 +164,7 @@ fn calm_water_mirrors_the_hill_above_it_weighted_by_fresnel() {
     let env = Environment {
         lights: &scene.lights,
         ambient: scene.render.ambient,
-        sky: &scene.sky,
+        sky: &swell::scene::SkyRadiance::new(&scene.sky),
         sun: scene.sky.sun(&scene.lights),
         eye,
         time: world.time(),

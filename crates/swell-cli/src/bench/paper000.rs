@@ -164,7 +164,12 @@ pub fn scene(extent_units: u32, cells: (u32, u32), added: usize) -> Scene {
         // Beyond the patch the eye sees distant sea (as in the `sea` preset).
         sky: Sky { ground: Vec3::new(0.30, 0.40, 0.47), ..Sky::default() },
         water: Some(WaterSpec {
-            surface: WaterSurface { size: Vec2::splat(extent), cells: [cells.0, cells.1], ..WaterSurface::default() },
+            surface: WaterSurface {
+                size: Vec2::splat(extent),
+                cells: [cells.0, cells.1],
+                extent: Some(swell::scene::WaterExtent::Patch),
+                ..WaterSurface::default()
+            },
             // Gouraud shading, as in the paper.
             material: WaterMaterial::default(),
             model: WaterModelSpec::Gerstner(GerstnerSpec { waves: paper_waves(added) }),

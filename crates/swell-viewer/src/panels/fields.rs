@@ -263,5 +263,6 @@ mod tests {
         check::<SpectrumKind>();
         check::<SpreadingFunction>();
         check::<Edges>();
+        check::<swell::scene::SkyModel>();
     }
 }

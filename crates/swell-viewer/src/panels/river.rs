@@ -8,11 +8,13 @@ use swell::water::RiverParams;
 
 use super::{fields, keys};
 
-/// Shows every key; returns whether `p` changed.
-pub fn show(ui: &mut Ui, p: &mut RiverParams) -> bool {
+/// Shows every key, and the material's `texture` (the pattern that flows); returns whether `p`
+/// or `texture` changed.
+pub fn show(ui: &mut Ui, p: &mut RiverParams, texture: &mut Option<String>) -> bool {
     let mut changed = false;
     ui.label("River between oscillating banks (paper 004); flows towards +Z");
     fields::grid("river").show(ui, |ui| {
+        changed |= fields::optional_text(ui, "flowing texture (off: streaks)", texture, "streaks");
         changed |= fields::number(ui, "flow speed", &mut p.flow_speed, 0.05, " m/s");
         changed |= fields::number(ui, "left bank mean x", &mut p.left_offset, 0.05, " m");
         changed |= fields::number(ui, "left bank swing >= 0", &mut p.left_amplitude, 0.01, " m");

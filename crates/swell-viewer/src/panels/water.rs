@@ -195,7 +195,7 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) 
         WaterModelSpec::SteepSines(p) => steep_sines::show(ui, p, &mut forms.steep_sines),
         WaterModelSpec::Radial(p) => radial::show(ui, p),
         WaterModelSpec::Noise(p) => noise::show(ui, p),
-        WaterModelSpec::River(p) => river::show(ui, p),
+        WaterModelSpec::River(p) => river::show(ui, p, &mut w.material.texture),
     };
     changed
 }

@@ -2,13 +2,17 @@
 //! seeded gradient noise.
 
 mod color;
+mod fast_exp;
 mod fast_trig;
 mod grid_spec;
+mod lanes;
 mod perlin;
 mod transform;
 
-pub use color::{linear_to_srgb, srgb_to_linear};
+pub use color::{linear_to_srgb, srgb_to_linear, xyy_to_linear_srgb};
+pub use fast_exp::{fast_exp2, fast_log2, fast_pow, FAST_EXP2_MAX_REL_ERROR, FAST_LOG2_MAX_ABS_ERROR};
 pub use fast_trig::{fast_floor, fast_sin_cos, reduce_turns, sin_cos_turns, FAST_SIN_COS_MAX_ERROR};
 pub use grid_spec::{GridSpec, MAX_GRID_CELLS};
+pub use lanes::{Lanes, Mask, Vec3Lanes, LANES};
 pub use perlin::Perlin;
 pub use transform::{Transform, MAX_SCALE};

@@ -116,6 +116,19 @@ impl Framebuffer {
         });
     }
 
+    /// Like [`Framebuffer::fill_background`], with the whole row at once: `row(y, colors, depth)`
+    /// may write any pixel of `colors` whose `depth` is still the far plane (1), so a background
+    /// that is smooth along the row can be evaluated sparsely and interpolated.
+    #[inline(never)]
+    pub fn fill_background_rows(&mut self, row: impl Fn(u32, &mut [Vec3], &[f32]) + Sync) {
+        let w = self.width as usize;
+        if w == 0 {
+            return;
+        }
+        let rows = self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().with_max_len(BACKGROUND_ROWS);
+        rows.for_each(|(y, (colors, depth))| row(y as u32, colors, depth));
+    }
+
     /// Encodes to RGBA8 (alpha 255): colour times `exposure`, then the sRGB curve, or the power
     /// law `c^(1/gamma)` when `gamma` is given. `out` is resized to `4 * width * height`.
     pub fn encode_rgba8(&self, exposure: f32, gamma: Option<f32>, out: &mut Vec<u8>) {

@@ -21,7 +21,7 @@ mod rgba8_encoder;
 pub mod triangle;
 
 pub use framebuffer::Framebuffer;
-pub use pipeline::{draw, draw_with, Cull, DrawScratch, Fragment};
+pub use pipeline::{draw, draw_deferred_with, draw_with, Cull, DrawScratch, Fragment};
 
 use glam::Vec4;
 

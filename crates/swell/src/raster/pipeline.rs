@@ -8,6 +8,8 @@
 //! 3. bands are rasterized in parallel, each walking the chunks in order, so every pixel sees its
 //!    triangles in submission order whatever the number of threads.
 
+use std::sync::Mutex;
+
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -53,11 +55,14 @@ pub struct Fragment<V> {
 pub struct DrawScratch<V> {
     window: Vec<(u8, WindowVertex)>,
     chunks: Vec<Chunk<V>>,
+    /// One per worker thread, for [`draw_deferred_with`]; each band locks the one of the thread
+    /// it runs on (never contended) and leaves nothing in it the next band reads.
+    deferred: Vec<Mutex<DeferredScratch<V>>>,
 }
 
 impl<V> Default for DrawScratch<V> {
     fn default() -> Self {
-        Self { window: Vec::new(), chunks: Vec::new() }
+        Self { window: Vec::new(), chunks: Vec::new(), deferred: Vec::new() }
     }
 }
 
@@ -127,6 +132,46 @@ pub fn draw_with<V, S>(
 
 /// Which band [`raster_band`] draws: rows `index * BAND_ROWS ..` of an image `row` pixels wide
 /// and `height` high.
+/// [`draw_with`] with deferred shading: the bands are drawn first, keeping only the nearest
+/// fragment of each pixel, then `shade` colours each covered pixel once, a row's run of covered
+/// pixels per call (`fragments` left to right, `colors` as many). The image is bit-identical to
+/// [`draw_with`] with a shader that shades one fragment the same way; per-pixel shading costs what
+/// the visible pixels cost, not every fragment that passed the depth test on the way.
+pub fn draw_deferred_with<V, S>(
+    scratch: &mut DrawScratch<V>,
+    target: &mut Framebuffer,
+    vertices: &[ClipVertex<V>],
+    indices: &[u32],
+    cull: Cull,
+    shade: &S,
+) where
+    V: Varying,
+    S: Fn(&[Fragment<V>], &mut [Vec3]) + Sync,
+{
+    let (width, height) = (target.width(), target.height());
+    if width == 0 || height == 0 {
+        return;
+    }
+    project_vertices(&mut scratch.window, vertices, width, height);
+    setup_and_bin(scratch, vertices, indices, width, height, cull == Cull::Back);
+    let workers = rayon::current_num_threads().max(1);
+    scratch.deferred.resize_with(workers, Default::default);
+    let (chunks, deferred) = (&scratch.chunks, &scratch.deferred);
+    let row = width as usize;
+    target
+        .color
+        .par_chunks_mut(row * BAND_ROWS as usize)
+        .zip(target.depth.par_chunks_mut(row * BAND_ROWS as usize))
+        .enumerate()
+        .with_max_len(1)
+        .for_each(|(index, (color, depth))| {
+            // Which worker's buffers a band uses changes nothing in the image: each band resets them.
+            let worker = rayon::current_thread_index().unwrap_or(0) % deferred.len();
+            let mut mine = deferred[worker].lock().unwrap_or_else(|e| e.into_inner());
+            raster_band_deferred(chunks, vertices, Band { index, row, height }, color, depth, &mut mine, shade)
+        });
+}
+
 #[derive(Clone, Copy)]
 struct Band {
     index: usize,
@@ -148,38 +193,131 @@ fn raster_band<V: Varying, S>(
 ) where
     S: Fn(&Fragment<V>) -> Vec3 + Sync,
 {
+    walk_band(chunks, band, depth, |i, hit, (x, y)| {
+        color[i] = shader(&hit.fragment(chunks, vertices, x, y));
+    });
+}
+
+/// The nearest triangle found so far at a pixel of a deferred draw: which one and where in it.
+#[derive(Clone, Copy, Debug, Default)]
+struct Hit {
+    /// Chunk and triangle within it.
+    chunk: u32,
+    triangle: u32,
+    /// Screen-space barycentric weights ([`super::triangle::Coverage::linear`]).
+    linear: [f32; 3],
+}
+
+impl Hit {
+    /// The fragment this hit shades: the same weights and sums as the immediate path, so the two
+    /// give bit-identical varyings.
+    #[inline(always)]
+    fn fragment<V: Varying>(&self, chunks: &[Chunk<V>], vertices: &[ClipVertex<V>], x: u32, y: u32) -> Fragment<V> {
+        let chunk = &chunks[self.chunk as usize];
+        let tri = &chunk.triangles[self.triangle as usize];
+        let varying = if std::mem::size_of::<V>() != 0 {
+            let varying_of = |k: u32| match vertices.get(k as usize) {
+                Some(v) => v.varying,
+                None => chunk.clipped[k as usize - vertices.len()],
+            };
+            let w = tri.perspective_weights(self.linear);
+            let [a, b, d] = chunk.corners[self.triangle as usize];
+            V::weighted(&varying_of(a), &varying_of(b), &varying_of(d), w)
+        } else {
+            V::default()
+        };
+        Fragment { varying, primitive: tri.primitive, x, y }
+    }
+}
+
+/// Walks every triangle binned to `band` in submission order and calls `nearer(pixel, hit, (x, y))` for
+/// each covered pixel whose depth it passes (strictly nearer: the first of equal depths wins),
+/// after writing the new depth.
+#[inline(always)]
+fn walk_band<V: Varying>(
+    chunks: &[Chunk<V>],
+    band: Band,
+    depth: &mut [f32],
+    mut nearer: impl FnMut(usize, Hit, (u32, u32)),
+) {
     let Band { index: band, row, height } = band;
     let y0 = band as u32 * BAND_ROWS;
     let y1 = (y0 + BAND_ROWS).min(height) - 1;
-    let has_varying = std::mem::size_of::<V>() != 0;
-    for chunk in chunks {
-        let varying_of = |k: u32| match vertices.get(k as usize) {
-            Some(v) => v.varying,
-            None => chunk.clipped[k as usize - vertices.len()],
-        };
+    for (c, chunk) in chunks.iter().enumerate() {
         for &t in &chunk.bins[band] {
             let tri = &chunk.triangles[t as usize];
-            tri.scan((y0, y1), |c| {
-                let i = (c.y - y0) as usize * row + c.x as usize;
-                let z = tri.depth(c.linear);
+            tri.scan((y0, y1), |cov| {
+                let i = (cov.y - y0) as usize * row + cov.x as usize;
+                let z = tri.depth(cov.linear);
                 if z < depth[i] {
                     depth[i] = z;
-                    let w = tri.perspective_weights(c.linear);
-                    // The same sum as `SetupTriangle::interpolate`, with the varyings looked up.
-                    let varying = if has_varying {
-                        let [a, b, d] = chunk.corners[t as usize];
-                        V::weighted(&varying_of(a), &varying_of(b), &varying_of(d), w)
-                    } else {
-                        V::default()
-                    };
-                    color[i] = shader(&Fragment { varying, primitive: tri.primitive, x: c.x, y: c.y });
+                    nearer(i, Hit { chunk: c as u32, triangle: t, linear: cov.linear }, (cov.x, cov.y));
                 }
             });
         }
     }
 }
 
-/// Outcode and (for vertices inside every plane) window position of each vertex.
+/// Like [`raster_band`], but each pixel is shaded once, after the whole band is drawn, with the
+/// varyings of its nearest fragment: no shading is spent on fragments a nearer one hides later.
+/// `shade` gets one row's covered pixels at a time, left to right, so it can shade them in batches.
+#[inline(never)]
+fn raster_band_deferred<V: Varying, S>(
+    chunks: &[Chunk<V>],
+    vertices: &[ClipVertex<V>],
+    band: Band,
+    color: &mut [Vec3],
+    depth: &mut [f32],
+    scratch: &mut DeferredScratch<V>,
+    shade: &S,
+) where
+    S: Fn(&[Fragment<V>], &mut [Vec3]) + Sync,
+{
+    let n = depth.len();
+    let DeferredScratch { hits, covered, fragments, colors } = scratch;
+    hits.resize(n, Hit::default());
+    covered.clear();
+    covered.resize(n, false);
+    walk_band(chunks, band, depth, |i, hit, _| {
+        hits[i] = hit;
+        covered[i] = true;
+    });
+    let y0 = band.index as u32 * BAND_ROWS;
+    let row = band.row;
+    for r in 0..n / row {
+        fragments.clear();
+        for x in 0..row {
+            let i = r * row + x;
+            if covered[i] {
+                fragments.push(hits[i].fragment(chunks, vertices, x as u32, y0 + r as u32));
+            }
+        }
+        if fragments.is_empty() {
+            continue;
+        }
+        colors.clear();
+        colors.resize(fragments.len(), Vec3::ZERO);
+        shade(fragments, colors);
+        for (f, c) in fragments.iter().zip(colors.iter()) {
+            color[(f.y - y0) as usize * row + f.x as usize] = *c;
+        }
+    }
+}
+
+/// One worker's buffers for [`raster_band_deferred`], kept between draws.
+struct DeferredScratch<V> {
+    hits: Vec<Hit>,
+    covered: Vec<bool>,
+    fragments: Vec<Fragment<V>>,
+    colors: Vec<Vec3>,
+}
+
+impl<V> Default for DeferredScratch<V> {
+    fn default() -> Self {
+        Self { hits: Vec::new(), covered: Vec::new(), fragments: Vec::new(), colors: Vec::new() }
+    }
+}
+
 #[inline(never)]
 fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[ClipVertex<V>], w: u32, h: u32) {
     out.resize(vertices.len(), (0, WindowVertex::default()));

@@ -3,20 +3,24 @@
 //! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`reflection_pass`] draws it
 //! mirrored into its own image for the water to reflect, [`water_pass`] draws the water surface,
 //! [`sky_pass`] fills what is left with the sky, [`overlay_pass`] draws the wireframe and normals
-//! when asked for.
+//! when asked for. Unbounded water (issue 17) is drawn from the camera-following rings of
+//! [`sea_lod`] by the same [`water_pass`], then [`far_field_pass`] carries the sea from the rings'
+//! edge to the horizon before the sky fills the rest.
 
+mod far_field_pass;
 mod mesh_pass;
 // issue 10: the OBJ comparison mode's camera/light files, read in the library so they can be fuzzed.
 mod mesh_view_json;
 mod overlay_pass;
 mod reflection_pass;
+mod sea_lod;
 mod shaded_draw;
 mod sky_pass;
 mod terrain_pass;
 mod water_pass;
 
 use crate::raster::Framebuffer;
-use crate::scene::{Camera, World};
+use crate::scene::{Camera, WaterExtent, World};
 use crate::shading::Environment;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
@@ -35,6 +39,12 @@ pub struct Renderer {
     water_draw: shaded_draw::ShadedDraw,
     /// The mirrored terrain the water reflects.
     reflection_scratch: reflection_pass::Scratch,
+    /// The unbounded sea's camera-following mesh.
+    sea: sea_lod::SeaLod,
+    /// The sky ready to look up, rebuilt when `[sky]` changes (a Preetham sky is tabulated).
+    sky: Option<crate::scene::SkyRadiance>,
+    /// The scene's lights as the sky drives them (`[sky] sun_drives_light`).
+    lights: Vec<crate::scene::Light>,
 }
 
 impl Renderer {
@@ -60,12 +70,15 @@ impl Renderer {
             fb.resize(w, h);
         }
         let scene = &world.scene;
+        let sky = self.sky.get_or_insert_with(|| crate::scene::SkyRadiance::new(&scene.sky));
+        sky.update(&scene.sky);
+        scene.sky.drive_lights(&scene.lights, &mut self.lights);
         let frame = FrameContext {
             env: Environment {
-                lights: &scene.lights,
+                lights: &self.lights,
                 ambient: scene.render.ambient,
-                sky: &scene.sky,
-                sun: scene.sky.sun(&scene.lights),
+                sky,
+                sun: scene.sky.sun(&self.lights),
                 eye: scene.camera.eye,
                 time: world.time(),
             },
@@ -83,10 +96,43 @@ impl Renderer {
             }
         }
         if let Some(water) = &world.water {
-            water_pass::draw(fb, &frame, water, &mut self.water_draw, world.terrain.as_ref(), reflection.as_ref());
+            let sea = match water.extent {
+                WaterExtent::Unbounded => self.sea.update(water, &scene.camera, world.time(), h),
+                WaterExtent::Patch => None,
+            };
+            let mesh = match sea {
+                Some(c) => shaded_draw::ShadedMesh {
+                    positions: &c.positions,
+                    normals: &c.normals,
+                    foam: c.has_foam.then_some(&c.foam[..]),
+                    indices: &c.indices,
+                },
+                None => shaded_draw::ShadedMesh {
+                    positions: &water.mesh.positions,
+                    normals: &water.mesh.normals,
+                    foam: water.mesh.has_foam.then_some(&water.mesh.foam[..]),
+                    indices: &water.mesh.indices,
+                },
+            };
+            let filter =
+                sea.map(|c| sea_lod::FootprintFilter::new(&water.slopes, &scene.camera, h, c, water.placement.scale));
+            water_pass::draw(
+                fb,
+                &frame,
+                water,
+                mesh,
+                filter.as_ref(),
+                &mut self.water_draw,
+                world.terrain.as_ref(),
+                reflection.as_ref(),
+            );
+            if sea.is_some() {
+                let lobe = crate::shading::Lobe::of(water.material.shading);
+                far_field_pass::draw(fb, &frame, &scene.camera, water, &water.slopes, lobe);
+            }
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
-        sky_pass::draw(fb, scene, frame.env.sun.as_ref());
+        sky_pass::draw(fb, &scene.camera, frame.env.sky, frame.env.sun.as_ref());
         if let Some(water) = &world.water {
             overlay_pass::draw(fb, &frame, &water.mesh, scene.render.wireframe, scene.render.normals);
         }

@@ -23,7 +23,7 @@ use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use crate::raster::clip::view_outcode;
-use crate::raster::{draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
+use crate::raster::{draw_deferred_with, draw_with, ClipVertex, Cull, DrawScratch, Fragment, Framebuffer};
 use crate::scene::Shading;
 use crate::shading::SurfaceVarying;
 
@@ -39,6 +39,26 @@ const SHADE_TASK: usize = 4096;
 pub(crate) trait SurfaceShader: Sync {
     /// Radiance at one surface point.
     fn shade(&self, position: Vec3, normal: Vec3, foam: f32) -> Vec3;
+
+    /// Radiance at a run of surface points (position, unit normal, foam), into `out` (as many):
+    /// the vertices of a Gouraud draw, the faces of a flat one. The default shades each with
+    /// [`Self::shade`]; a shader may shade several at once with the same result.
+    fn shade_points(&self, points: &[(Vec3, Vec3, f32)], out: &mut [Vec3]) {
+        for (&(p, n, f), o) in points.iter().zip(out.iter_mut()) {
+            *o = self.shade(p, n, f);
+        }
+    }
+
+    /// Per-pixel shading of a run of pixels (one row's covered pixels, left to right): `out[i]`
+    /// gets the radiance of `pixels[i]`, whose interpolated normal is not yet unit length. The
+    /// default shades each with [`Self::shade`]; a shader may shade several at once instead, as long
+    /// as each pixel's colour depends on that pixel alone.
+    fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
+        for (f, o) in pixels.iter().zip(out.iter_mut()) {
+            let v = &f.varying;
+            *o = self.shade(v.position, v.normal.normalize_or(Vec3::Y), v.foam);
+        }
+    }
 }
 
 /// A triangle mesh as the shaded draw reads it: world positions (m), unit vertex normals, optional
@@ -94,14 +114,22 @@ impl ShadedDraw {
                 self.plain.par_iter_mut().zip(mesh.positions.par_iter()).for_each(|(cv, &p)| cv.position = clip(p));
                 let positions = mesh.positions;
                 self.faces.resize(mesh.indices.len() / 3, Vec3::ZERO);
-                self.faces.par_iter_mut().zip(mesh.indices.par_chunks_exact(3)).for_each(|(c, t)| {
-                    let [a, b, d] = [0, 1, 2].map(|k| positions[t[k] as usize]);
-                    // Triangles wind counter-clockwise seen from their front, so this normal
-                    // points out of it (up, for water and terrain).
-                    let n = (b - a).cross(d - a).normalize_or(Vec3::Y);
-                    let f = (foam(t[0] as usize) + foam(t[1] as usize) + foam(t[2] as usize)) / 3.0;
-                    *c = shader.shade((a + b + d) / 3.0, n, f);
-                });
+                self.faces.par_chunks_mut(SHADE_TASK).zip(mesh.indices.par_chunks(3 * SHADE_TASK)).for_each(
+                    |(faces, tris)| {
+                        let points: Vec<(Vec3, Vec3, f32)> = tris
+                            .chunks_exact(3)
+                            .map(|t| {
+                                let [a, b, d] = [0, 1, 2].map(|k| positions[t[k] as usize]);
+                                // Triangles wind counter-clockwise seen from their front, so this
+                                // normal points out of it (up, for water and terrain).
+                                let n = (b - a).cross(d - a).normalize_or(Vec3::Y);
+                                let f = (foam(t[0] as usize) + foam(t[1] as usize) + foam(t[2] as usize)) / 3.0;
+                                ((a + b + d) / 3.0, n, f)
+                            })
+                            .collect();
+                        shader.shade_points(&points, faces);
+                    },
+                );
                 let faces = &self.faces;
                 draw_with(&mut self.draw_plain, fb, &self.plain, mesh.indices, Cull::None, &|f| {
                     faces[f.primitive as usize]
@@ -175,19 +203,26 @@ impl ShadedDraw {
         });
         mark_visible_vertices(mesh.indices, &self.outcodes, &mut self.visible);
         let visible = &self.visible;
-        self.colored.par_iter_mut().enumerate().with_max_len(SHADE_TASK).for_each(|(i, cv)| {
-            if visible[i].load(Ordering::Relaxed) {
-                let foam = mesh.foam.map_or(0.0, |f| f[i]);
-                cv.varying = shader.shade(mesh.positions[i], mesh.normals[i], foam);
+        // Visible vertices in blocks, each shaded as one run (the water shades many at a time).
+        self.colored.par_chunks_mut(SHADE_TASK).enumerate().for_each(|(block, colored)| {
+            let base = block * SHADE_TASK;
+            let lit: Vec<usize> =
+                (base..base + colored.len()).filter(|&i| visible[i].load(Ordering::Relaxed)).collect();
+            let points: Vec<(Vec3, Vec3, f32)> =
+                lit.iter().map(|&i| (mesh.positions[i], mesh.normals[i], mesh.foam.map_or(0.0, |f| f[i]))).collect();
+            let mut colors = vec![Vec3::ZERO; points.len()];
+            shader.shade_points(&points, &mut colors);
+            for (&i, c) in lit.iter().zip(colors) {
+                colored[i - base].varying = c;
             }
         });
     }
 
     /// Per-pixel shading of the surface vertices already in `self.surface`.
+    /// Per-pixel shading, deferred: each visible pixel is shaded once, whatever the overdraw.
     fn draw_surface_pixels<S: SurfaceShader>(&mut self, fb: &mut Framebuffer, mesh: ShadedMesh, shader: &S) {
-        draw_with(&mut self.draw_surface, fb, &self.surface, mesh.indices, Cull::None, &|f| {
-            let v = &f.varying;
-            shader.shade(v.position, v.normal.normalize_or(Vec3::Y), v.foam)
+        draw_deferred_with(&mut self.draw_surface, fb, &self.surface, mesh.indices, Cull::None, &|pixels, out| {
+            shader.shade_pixels(pixels, out)
         });
     }
 }

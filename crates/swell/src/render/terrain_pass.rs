@@ -21,7 +21,7 @@ pub(crate) struct TerrainShader<'a> {
 
 impl SurfaceShader for TerrainShader<'_> {
     fn shade(&self, position: Vec3, normal: Vec3, _foam: f32) -> Vec3 {
-        shade_terrain(self.env, self.material, position, normal)
+        self.env.haze(position, shade_terrain(self.env, self.material, position, normal))
     }
 }
 

@@ -4,36 +4,111 @@
 
 use glam::{Vec3, Vec4};
 
+use super::sea_lod::FootprintFilter;
 use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use super::FrameContext;
+use crate::math::{Lanes, Vec3Lanes};
+use crate::raster::Fragment;
 use crate::raster::Framebuffer;
 use crate::scene::{TerrainBody, WaterBody};
-use crate::shading::{shade_water, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed, WaterLook};
+use crate::shading::{
+    shade_water, shade_water_filtered, shade_water_run, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed,
+    SurfaceVarying, WaterLook, WaterRun,
+};
 
-/// Water as [`shade_water`] sees it, with the specular lobe of its shading model.
+/// Water as [`shade_water`] sees it, with the specular lobe of its shading model; with a
+/// `filter` (the unbounded sea's) the slope variance each point's pixel cannot resolve is shaded
+/// statistically ([`shade_water_filtered`]).
 struct WaterShader<'a> {
     env: &'a Environment<'a>,
     look: WaterLook<'a>,
     lobe: Lobe,
+    filter: Option<&'a FootprintFilter<'a>>,
 }
 
 impl SurfaceShader for WaterShader<'_> {
     fn shade(&self, position: Vec3, normal: Vec3, foam: f32) -> Vec3 {
-        shade_water(self.env, &self.look, self.lobe, position, normal, foam)
+        match self.filter {
+            Some(f) => {
+                let unresolved = f.variance(position, normal);
+                shade_water_filtered(self.env, &self.look, self.lobe, position, normal, foam, unresolved)
+            }
+            None => shade_water(self.env, &self.look, self.lobe, position, normal, foam),
+        }
+    }
+
+    /// A row's pixels many at a time ([`shade_water_run`]).
+    fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
+        shade_water_run(self.env, &self.look, self.lobe, &Pixels { pixels, filter: self.filter }, out);
+    }
+
+    /// Many vertices or faces at a time ([`shade_water_run`]).
+    fn shade_points(&self, points: &[(Vec3, Vec3, f32)], out: &mut [Vec3]) {
+        shade_water_run(self.env, &self.look, self.lobe, &Points { points, filter: self.filter }, out);
     }
 }
 
-/// Draws `water` into `fb` through `draw`; `terrain` is the bottom where the material sets none,
-/// `reflection` the terrain the surface mirrors.
+/// A run of water vertices or faces, with the unbounded sea's filter when there is one.
+struct Points<'a> {
+    points: &'a [(Vec3, Vec3, f32)],
+    filter: Option<&'a FootprintFilter<'a>>,
+}
+
+impl WaterRun for Points<'_> {
+    fn len(&self) -> usize {
+        self.points.len()
+    }
+    #[inline(always)]
+    fn point(&self, i: usize) -> (Vec3, Vec3, f32) {
+        self.points[i]
+    }
+    #[inline(always)]
+    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
+        match self.filter {
+            Some(f) => f.variance_lanes(position, normal),
+            None => Lanes::splat(0.0),
+        }
+    }
+}
+
+/// A row's run of water pixels, with the unbounded sea's filter when there is one.
+struct Pixels<'a> {
+    pixels: &'a [Fragment<SurfaceVarying>],
+    filter: Option<&'a FootprintFilter<'a>>,
+}
+
+impl WaterRun for Pixels<'_> {
+    fn len(&self) -> usize {
+        self.pixels.len()
+    }
+    #[inline(always)]
+    fn point(&self, i: usize) -> (Vec3, Vec3, f32) {
+        let v = &self.pixels[i].varying;
+        (v.position, v.normal, v.foam)
+    }
+    #[inline(always)]
+    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
+        match self.filter {
+            Some(f) => f.variance_lanes(position, normal),
+            None => Lanes::splat(0.0),
+        }
+    }
+}
+
+/// Draws `mesh` (the patch's or the unbounded sea's, world positions) with `water`'s material
+/// into `fb` through `draw`; `terrain` is the bottom where the material sets none, `reflection`
+/// the terrain the surface mirrors, `filter` the unbounded sea's footprint filter.
+#[allow(clippy::too_many_arguments)]
 pub fn draw(
     fb: &mut Framebuffer,
     frame: &FrameContext,
     water: &WaterBody,
+    mesh: ShadedMesh,
+    filter: Option<&FootprintFilter>,
     draw: &mut ShadedDraw,
     terrain: Option<&TerrainBody>,
     reflection: Option<&ReflectionMap>,
 ) {
-    let mesh = &water.mesh;
     let material = &water.material;
     let flat_bottom;
     // An explicit flat bottom in the material wins; otherwise the scene's terrain is the bottom.
@@ -46,18 +121,7 @@ pub fn draw(
         (None, None) => &NoBottom,
     };
     let look = WaterLook::new(material, seabed, water.texture.as_ref(), frame.env.time).with_reflection(reflection);
-    let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading) };
+    let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading), filter };
     let clip_from_world = frame.clip_from_world;
-    draw.draw(
-        fb,
-        ShadedMesh {
-            positions: &mesh.positions,
-            normals: &mesh.normals,
-            foam: mesh.has_foam.then_some(&mesh.foam[..]),
-            indices: &mesh.indices,
-        },
-        &|p| clip_from_world * Vec4::from((p, 1.0)),
-        material.shading,
-        &shader,
-    );
+    draw.draw(fb, mesh, &|p| clip_from_world * Vec4::from((p, 1.0)), material.shading, &shader);
 }

@@ -28,6 +28,11 @@ impl Scene {
             let [x, z] = w.surface.cells;
             bytes = bytes.saturating_add(estimate_grid_bytes(x, z, WATER_BYTES_PER_VERTEX));
             bytes = bytes.saturating_add(w.model.estimate_bytes());
+            // The unbounded sea's rings (issue 17), each a full grid of its own.
+            if self.water_extent() == Some(super::WaterExtent::Unbounded) {
+                let (levels, n) = (u64::from(w.surface.lod.levels), w.surface.lod.ring_cells);
+                bytes = bytes.saturating_add(levels.saturating_mul(estimate_grid_bytes(n, n, WATER_BYTES_PER_VERTEX)));
+            }
         }
         if let Some(t) = &self.terrain {
             let side = match t.generator {

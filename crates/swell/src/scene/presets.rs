@@ -86,6 +86,22 @@ pub const PRESETS: &[Preset] = &[
         description: "paper 000 figure 4.5: main wave plus nine waves of various lengths and directions",
         toml: include_str!("../../presets/paper-000-fig-4-5.toml"),
     },
+    // Times of day under the physical sky (issue 18).
+    Preset {
+        name: "noon",
+        description: "open sea at noon under Preetham's physical clear sky, the sun high and white",
+        toml: include_str!("../../presets/noon.toml"),
+    },
+    Preset {
+        name: "evening",
+        description: "open sea in the evening: a low orange sun ahead and its glitter path (Preetham sky)",
+        toml: include_str!("../../presets/evening.toml"),
+    },
+    Preset {
+        name: "hazy",
+        description: "open sea on a hazy afternoon: turbidity 7 and aerial perspective",
+        toml: include_str!("../../presets/hazy.toml"),
+    },
     // Terrain presets (issue 5).
     Preset {
         name: "terrain",

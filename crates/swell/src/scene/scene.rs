@@ -224,6 +224,14 @@ impl Scene {
         Ok(())
     }
 
+    /// How far the scene's water reaches: its `[water] extent`, or by default unbounded for a
+    /// model defined everywhere in a scene without terrain ([`super::WaterExtent::default_for`]).
+    /// `None` without water.
+    pub fn water_extent(&self) -> Option<super::WaterExtent> {
+        let w = self.water.as_ref()?;
+        Some(w.surface.extent.unwrap_or_else(|| super::WaterExtent::default_for(&w.model, self.terrain.is_some())))
+    }
+
     /// Makes relative file paths in the scene (heightmaps, water textures) relative to `dir`, the
     /// directory of the scene file they were written in.
     pub fn resolve_paths(&mut self, dir: &std::path::Path) {

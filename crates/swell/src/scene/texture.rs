@@ -77,6 +77,50 @@ impl Texture {
         Self { width: SIDE, height: SIDE, texels }
     }
 
+    /// A tiling pattern of flowing water around `base` (linear RGB): bright, narrow streaks
+    /// drawn out along v (the flow, +Z on the water) over darker water, as foam lines and the
+    /// sky's glints stretched by the current look on a river.
+    ///
+    /// Like [`Texture::procedural_water`] it is a sum of sines with integer wave numbers per tile
+    /// (so it tiles exactly) and fixed phases (so it is the same on every run); here the wave
+    /// numbers across (u) are 3 to 7 and along (v) 1 to 2, so each feature is several times
+    /// longer than it is wide, yet broad enough for a mesh shaded per vertex (a few vertices
+    /// per streak) to draw it.
+    pub fn procedural_streaks(base: Vec3) -> Self {
+        const SIDE: u32 = 256;
+        // (k_u, k_v, phase, weight): the first four are the streaks, the last two slow swells of
+        // brightness along the flow that make the motion readable at a glance.
+        const WAVES: [(f32, f32, f32, f32); 8] = [
+            (3.0, 1.0, 0.4, 1.0),
+            (-5.0, 1.0, 2.3, 0.9),
+            (7.0, -2.0, 4.4, 0.7),
+            (-6.0, 2.0, 1.1, 0.5),
+            (4.0, -1.0, 5.6, 0.8),
+            (5.0, 1.0, 3.0, 0.6),
+            (1.0, 2.0, 0.9, 0.7),
+            (-2.0, 1.0, 2.0, 0.6),
+        ];
+        let total: f32 = WAVES.iter().map(|w| w.3).sum();
+        let highlight = (base * 3.0 + Vec3::splat(0.12)).min(Vec3::ONE);
+        let shadow = base * 0.55;
+        let mut texels = Vec::with_capacity((SIDE * SIDE) as usize);
+        for j in 0..SIDE {
+            for i in 0..SIDE {
+                let (u, v) = ((i as f32 + 0.5) / SIDE as f32, (j as f32 + 0.5) / SIDE as f32);
+                let s: f32 = WAVES
+                    .iter()
+                    .map(|&(ku, kv, ph, w)| w * (std::f32::consts::TAU * (ku * u + kv * v) + ph).sin())
+                    .sum::<f32>()
+                    / total;
+                // Streaks where the sum peaks: thin bright lines on the crests of the pattern.
+                let streak = ((s - 0.25) / 0.35).clamp(0.0, 1.0).powi(2);
+                let t = (0.5 + 0.9 * s).clamp(0.0, 1.0);
+                texels.push(shadow.lerp(base, t) + (highlight - base) * streak);
+            }
+        }
+        Self { width: SIDE, height: SIDE, texels }
+    }
+
     /// Width in texels.
     pub fn width(&self) -> u32 {
         self.width

@@ -3,11 +3,15 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::{Shading, Texture};
+use super::{Shading, Texture, WaterPlacement};
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
+use crate::water::SurfaceFlow;
 
 /// Most one absorption coefficient may be, 1/m: light is then gone within a millimetre.
 pub const MAX_ABSORPTION: f32 = 1000.0;
+
+/// The texture names that are generated rather than read from a file.
+pub const PROCEDURAL_TEXTURES: [&str; 2] = ["procedural", "streaks"];
 
 /// The look of a water body: `[water.material]`. Every key has a default.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -37,8 +41,10 @@ pub struct WaterMaterial {
     pub bottom_color: Vec3,
     /// Linear RGB albedo of foam, components in [0, 1]. Default [0.85, 0.88, 0.9].
     pub foam_color: Vec3,
-    /// Texture of the water colour: `"procedural"` (a tiling water pattern) or an image file path
-    /// (PNG or JPEG, sRGB, relative to the working directory); absent means none.
+    /// Texture of the water colour: `"procedural"` (a tiling water pattern), `"streaks"` (a
+    /// tiling pattern of streaks along +Z, flowing water) or an image file path (PNG or JPEG,
+    /// sRGB, relative to the scene file); absent means none, except on a river, which takes
+    /// `"streaks"` ([`WaterMaterial::with_flow`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub texture: Option<String>,
     /// Size of one texture tile on the water, metres, > 0. Default 8.
@@ -106,9 +112,28 @@ impl WaterMaterial {
     /// it (as terrain heightmaps are).
     pub fn resolve_paths(&mut self, dir: &std::path::Path) {
         if let Some(t) = &mut self.texture {
-            if t != "procedural" && std::path::Path::new(t).is_relative() {
+            if !PROCEDURAL_TEXTURES.contains(&t.as_str()) && std::path::Path::new(t).is_relative() {
                 *t = dir.join(&*t).to_string_lossy().into_owned();
             }
+        }
+    }
+
+    /// The material a water body with `flow` (its model's [`SurfaceFlow`], e.g. the river's) is
+    /// drawn with, on a patch placed by `placement`: the texture defaults to `"streaks"`, it repeats
+    /// every `texture_length` and slides at the flow's velocity, both turned and scaled with the
+    /// patch (the material's own `texture_scale` and `flow_velocity` give way to the model's).
+    /// Without a flow, the material as it is.
+    pub fn with_flow(&self, flow: Option<SurfaceFlow>, placement: &WaterPlacement) -> WaterMaterial {
+        let Some(flow) = flow else { return self.clone() };
+        // Ry(yaw) carries local (x, z) to (x cos + z sin, −x sin + z cos), as the placement does.
+        let (s, c) = placement.yaw.sin_cos();
+        let v = flow.velocity;
+        let turned = Vec2::new(v.x * c + v.y * s, -v.x * s + v.y * c);
+        WaterMaterial {
+            texture: Some(self.texture.clone().unwrap_or_else(|| "streaks".into())),
+            texture_scale: flow.texture_length * placement.scale,
+            flow_velocity: turned * placement.scale,
+            ..self.clone()
         }
     }
 
@@ -117,6 +142,7 @@ impl WaterMaterial {
         match self.texture.as_deref() {
             None => Ok(None),
             Some("procedural") => Ok(Some(Texture::procedural_water(self.color))),
+            Some("streaks") => Ok(Some(Texture::procedural_streaks(self.color))),
             // A file that cannot be read is named with the key that names it.
             Some(path) => Texture::from_file(std::path::Path::new(path))
                 .map(Some)

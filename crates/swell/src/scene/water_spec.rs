@@ -19,6 +19,7 @@
 use glam::Vec2;
 use serde::{de::DeserializeOwned, Deserialize, Serialize};
 
+use super::water_extent::{LodSettings, WaterExtent};
 use super::water_placement::WaterPlacement;
 use crate::error::{check_finite_vec, Error, Result};
 use crate::math::GridSpec;
@@ -46,6 +47,17 @@ pub struct WaterSurface {
     /// (0, 10000]. Default 1. Named so as not to clash with the noise model's `scale`.
     #[serde(skip_serializing_if = "is_one")]
     pub uniform_scale: f32,
+    /// `"unbounded"` (to the horizon) or `"patch"`; `None` takes
+    /// [`WaterExtent::default_for`] the model (issue 17). Resolve with [`super::Scene::water_extent`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extent: Option<WaterExtent>,
+    /// `[water.lod]`: the camera-following mesh of unbounded water.
+    #[serde(skip_serializing_if = "is_default_lod")]
+    pub lod: LodSettings,
+}
+
+fn is_default_lod(l: &LodSettings) -> bool {
+    *l == LodSettings::default()
 }
 
 // Written only when set, so scenes without a transform save exactly as before.
@@ -58,7 +70,15 @@ fn is_one(v: &f32) -> bool {
 
 impl Default for WaterSurface {
     fn default() -> Self {
-        Self { size: Vec2::splat(200.0), cells: [256, 256], center: Vec2::ZERO, yaw_deg: 0.0, uniform_scale: 1.0 }
+        Self {
+            size: Vec2::splat(200.0),
+            cells: [256, 256],
+            center: Vec2::ZERO,
+            yaw_deg: 0.0,
+            uniform_scale: 1.0,
+            extent: None,
+            lod: LodSettings::default(),
+        }
     }
 }
 
@@ -221,7 +241,7 @@ pub struct WaterSpec {
 }
 
 /// Keys of `[water]` that belong to the patch rather than to the model.
-const SURFACE_KEYS: [&str; 5] = ["size", "cells", "center", "yaw_deg", "uniform_scale"];
+const SURFACE_KEYS: [&str; 7] = ["size", "cells", "center", "yaw_deg", "uniform_scale", "extent", "lod"];
 
 impl WaterSpec {
     /// Reads the `[water]` table; `source` names the file in errors.
@@ -270,6 +290,10 @@ impl WaterSpec {
     pub fn validate(&self) -> Result<()> {
         self.surface.grid()?;
         self.surface.placement()?;
+        self.surface.lod.validate()?;
+        if let Some(e) = self.surface.extent {
+            e.validate(&self.model)?;
+        }
         self.material.validate("water.material")?;
         self.model.validate()
     }

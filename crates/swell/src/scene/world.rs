@@ -1,9 +1,10 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
 use super::Texture;
-use super::{Scene, TerrainBody, WaterMaterial, WaterPlacement};
+use super::{LodSettings, Scene, TerrainBody, WaterExtent, WaterMaterial, WaterPlacement};
 use crate::error::Result;
 use crate::mesh::SurfaceMesh;
+use crate::shading::UnresolvedSlopes;
 use crate::water::WaveModel;
 
 /// The water of a [`World`]: the model, the mesh it displaces and the material it is drawn with.
@@ -20,6 +21,14 @@ pub struct WaterBody {
     pub material: WaterMaterial,
     /// The material's texture, loaded or generated, if it names one.
     pub texture: Option<Texture>,
+    /// How far the water reaches ([`crate::scene::Scene::water_extent`]): an unbounded sea is
+    /// drawn by the renderer from a camera-following mesh ([`crate::mesh::Clipmap`]) and a far
+    /// field, the patch `mesh` staying what bakes and exports sample.
+    pub extent: WaterExtent,
+    /// `[water.lod]`: the camera-following mesh's settings.
+    pub lod: LodSettings,
+    /// The model's slope spectrum, for filtering what a pixel cannot resolve.
+    pub slopes: UnresolvedSlopes,
 }
 
 /// Refuses a mesh holding NaN or infinity, so it never reaches the rasterizer or a file. Validation
@@ -61,9 +70,19 @@ impl World {
             Some(spec) => {
                 let model = spec.model.build()?;
                 let mesh = SurfaceMesh::new(spec.surface.grid()?);
-                let texture = spec.material.load_texture()?;
                 let placement = spec.surface.placement()?;
-                Some(WaterBody { model, mesh, placement, material: spec.material.clone(), texture })
+                // A flowing model (the river) slides a texture with its flow.
+                let material = spec.material.with_flow(spec.model.params().surface_flow(), &placement);
+                let texture = material.load_texture()?;
+                let mut components = Vec::new();
+                model.slope_components(&mut components);
+                // A uniform scale keeps slopes and divides wavenumbers: the table is in world units.
+                for c in &mut components {
+                    c.0 /= placement.scale;
+                }
+                let slopes = UnresolvedSlopes::from_components(&components);
+                let extent = scene.water_extent().expect("the scene has water");
+                Some(WaterBody { model, mesh, placement, material, texture, extent, lod: spec.surface.lod, slopes })
             }
             None => None,
         };

@@ -2,7 +2,8 @@
 
 use glam::Vec3;
 
-use crate::scene::{Light, Sky, SunDisc};
+use crate::math::Vec3Lanes;
+use crate::scene::{Light, SkyRadiance, SunDisc};
 
 /// Everything that lights a surface: the lights, the ambient term and the sky (for reflections).
 #[derive(Clone, Copy, Debug)]
@@ -11,8 +12,8 @@ pub struct Environment<'a> {
     pub lights: &'a [Light],
     /// Ambient radiance added to every diffuse surface.
     pub ambient: Vec3,
-    /// The sky, for reflections.
-    pub sky: &'a Sky,
+    /// The sky, ready to look up, for reflections and the haze of distance.
+    pub sky: &'a SkyRadiance,
     /// The sun disc drawn in the sky and reflected by water, if any ([`Sky::sun`]).
     pub sun: Option<SunDisc>,
     /// Camera position, world metres.
@@ -27,6 +28,25 @@ impl Environment<'_> {
         let sky = self.sky.radiance(dir);
         match &self.sun {
             Some(sun) => sky + sun.radiance(dir),
+            None => sky,
+        }
+    }
+
+    /// `color` of a surface at world `p` with the sky's aerial perspective applied
+    /// ([`SkyRadiance::aerial_perspective`]; unchanged when `[sky] haze_distance` is 0).
+    #[inline]
+    pub fn haze(&self, p: Vec3, color: Vec3) -> Vec3 {
+        self.sky.aerial_perspective(self.eye, p, color)
+    }
+}
+
+impl Environment<'_> {
+    /// [`Self::sky_radiance`] along many unit directions.
+    #[inline(always)]
+    pub fn sky_radiance_lanes(&self, dir: Vec3Lanes) -> Vec3Lanes {
+        let sky = self.sky.radiance_lanes(dir);
+        match &self.sun {
+            Some(sun) => sky + sun.radiance_lanes(dir),
             None => sky,
         }
     }

@@ -8,6 +8,7 @@
 mod fresnel;
 mod lighting;
 mod reflection_map;
+mod slope_variance;
 mod specular;
 mod surface_varying;
 mod terrain_color;
@@ -16,7 +17,11 @@ mod water_optics;
 pub use fresnel::fresnel_dielectric;
 pub use lighting::{lambert, Environment};
 pub use reflection_map::ReflectionMap;
+pub use slope_variance::{mean_fresnel, widened_lobe, UnresolvedSlopes};
 pub use specular::{shade_opaque, specular, Lobe, OpaqueLook};
 pub use surface_varying::SurfaceVarying;
 pub use terrain_color::shade_terrain;
-pub use water_optics::{refract, shade_water, FlatBottom, NoBottom, Seabed, WaterLook};
+pub use water_optics::{
+    refract, shade_water, shade_water_filtered, shade_water_lanes, shade_water_run, FlatBottom, NoBottom, Seabed,
+    WaterLook, WaterPoints, WaterRun,
+};

@@ -4,8 +4,10 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{fresnel_dielectric, lambert, specular, Environment, Lobe, ReflectionMap};
-use crate::scene::{TerrainBody, Texture, WaterMaterial};
+use super::slope_variance::{mean_fresnel_lanes, spread_normals_lanes, widened_lobe_lanes};
+use super::{fresnel_dielectric, Environment, Lobe, ReflectionMap};
+use crate::math::{fast_pow, Lanes, Vec3Lanes};
+use crate::scene::{Light, TerrainBody, Texture, WaterMaterial};
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
 ///
@@ -14,6 +16,12 @@ pub trait Seabed: Sync {
     /// Bottom height (world y, metres) and linear RGB albedo under world (`x`, `z`), or `None`
     /// where no bottom is seen (deep water).
     fn sample(&self, x: f32, z: f32) -> Option<(f32, Vec3)>;
+
+    /// False when [`Self::sample`] is `None` everywhere, so the shading can skip the refracted
+    /// ray's search for a bottom.
+    fn anywhere(&self) -> bool {
+        true
+    }
 }
 
 /// A horizontal bottom at world height `height` with one albedo.
@@ -38,6 +46,9 @@ pub struct NoBottom;
 impl Seabed for NoBottom {
     fn sample(&self, _x: f32, _z: f32) -> Option<(f32, Vec3)> {
         None
+    }
+    fn anywhere(&self) -> bool {
+        false
     }
 }
 
@@ -114,42 +125,266 @@ const SEABED_ITERATIONS: usize = 4;
 /// refraction and absorption down to it. A reflected ray below the horizon would hit the water
 /// again; it is bent back to the horizon, whose colour is what such a ray would eventually see.
 pub fn shade_water(env: &Environment, look: &WaterLook, lobe: Lobe, p: Vec3, n: Vec3, foam: f32) -> Vec3 {
-    let m = look.material;
-    let to_eye = (env.eye - p).normalize_or(Vec3::Y);
-    // Seen from behind (a fold, or the far side of a steep crest), shade the side facing the eye.
-    let n = if n.dot(to_eye) < 0.0 { -n } else { n };
-    let cos_i = n.dot(to_eye);
-    let f = fresnel_dielectric(cos_i, m.refractive_index);
-    let mut reflected = (2.0 * cos_i * n - to_eye).normalize_or(Vec3::Y);
-    let terrain = match look.reflection {
-        Some(map) if reflected.y > 0.0 => map.sample(p, reflected),
-        _ => None,
-    };
-    let sky = terrain.unwrap_or_else(|| {
-        reflected.y = reflected.y.max(0.0);
-        env.sky_radiance(reflected.normalize_or(Vec3::Y))
-    });
+    shade_water_filtered(env, look, lobe, p, n, foam, 0.0)
+}
 
-    let body = look.body_color(p.x, p.z) * lambert(env, p, n);
-    let transmitted = match refract(-to_eye, n, 1.0 / m.refractive_index) {
-        Some(t) if t.y < -1e-4 => match bottom_hit(look.seabed, p, t) {
-            Some((path, height, albedo)) => {
-                let bottom = albedo * bottom_irradiance(env, m, p.y.max(0.0) - height);
-                let transmittance = (-m.absorption * path).exp();
-                bottom * transmittance + body * (Vec3::ONE - transmittance)
-            }
-            None => body,
-        },
-        _ => body,
+/// [`shade_water`] with the slope variance `unresolved` (both axes summed, >= 0) of the waves
+/// too short for the mesh or the pixel that sampled `n`, shaded statistically
+/// (`shading/slope_variance.rs`, Bruneton et al. 2010): the Fresnel factor is their mean over the
+/// slopes, the reflected sky is averaged over normals spread by the slopes' deviation and the
+/// specular lobe is widened with its energy kept. `unresolved = 0` is [`shade_water`].
+///
+/// One point is one lane of [`shade_water_lanes`], the one definition of the water's colour.
+pub fn shade_water_filtered(
+    env: &Environment,
+    look: &WaterLook,
+    lobe: Lobe,
+    p: Vec3,
+    n: Vec3,
+    foam: f32,
+    unresolved: f32,
+) -> Vec3 {
+    let points = WaterPoints {
+        position: Vec3Lanes::splat(p),
+        normal: Vec3Lanes::splat(n),
+        foam: Lanes::splat(foam),
+        unresolved: Lanes::splat(unresolved),
     };
-    let glitter =
-        if m.specular > 0.0 { m.specular * specular(env, p, n, to_eye, lobe, m.shininess) } else { Vec3::ZERO };
-    let water = sky * f + transmitted * (1.0 - f) + glitter;
-    if foam > 0.0 {
-        let foam_light = m.foam_color * lambert(env, p, Vec3::Y);
-        water.lerp(foam_light, foam.min(1.0))
-    } else {
-        water
+    shade_water_lanes(env, look, lobe, &points, 1).lane(0)
+}
+
+/// Up to [`crate::math::LANES`] water surface points shaded together (see [`shade_water_lanes`]).
+#[derive(Clone, Copy, Debug)]
+pub struct WaterPoints {
+    /// World positions, m.
+    pub position: Vec3Lanes,
+    /// Unit normals (any side: the one facing the eye is shaded).
+    pub normal: Vec3Lanes,
+    /// Foam coverage, [0, 1].
+    pub foam: Lanes,
+    /// Unresolved slope variance, >= 0 (0: a point-sampled surface).
+    pub unresolved: Lanes,
+}
+
+/// [`shade_water_filtered`] for the first `live` lanes of `points` at once (the rest are computed
+/// and ignored): the per-pixel shading of water runs this over each row's pixels, [`LANES`](crate::math::LANES) at a time.
+/// Each lane's result is what the scalar formula gives for that point alone; the vector part is
+/// plain arithmetic on [`Lanes`] with [`fast_pow`] for the powers (relative error < 1e-4), and the
+/// parts that read scene data (the sky, the mirrored terrain, the texture, the seabed) run per
+/// lane.
+#[inline(always)]
+pub fn shade_water_lanes(
+    env: &Environment,
+    look: &WaterLook,
+    lobe: Lobe,
+    points: &WaterPoints,
+    live: usize,
+) -> Vec3Lanes {
+    let m = look.material;
+    let p = points.position;
+    let to_eye = (Vec3Lanes::splat(env.eye) - p).normalize_or(Vec3::Y);
+    // Seen from behind (a fold, or the far side of a steep crest), shade the side facing the eye.
+    let n = points.normal.dot(to_eye).lt(0.0).select3(-points.normal, points.normal);
+    let cos_i = n.dot(to_eye);
+    let unresolved = points.unresolved.max(0.0);
+    let f = unresolved.gt(0.0).select(
+        mean_fresnel_lanes(cos_i, unresolved, fresnel_dielectric(1.0, m.refractive_index)),
+        fresnel_dielectric_lanes(cos_i, m.refractive_index),
+    );
+
+    // The sky the slopes' spread of normals reflects, averaged over two normals tilted by the
+    // slopes' deviation towards and away from the eye (one normal, twice, when nothing is
+    // unresolved).
+    let mut sky = Vec3Lanes::splat(Vec3::ZERO);
+    for s in spread_normals_lanes(n, to_eye, unresolved, live) {
+        let c = s.dot(to_eye).max(0.0);
+        let mut r = s.scale(2.0 * c) - to_eye;
+        // A reflected ray below the horizon would meet the water again: bent back to it.
+        r.y = r.y.max(0.0);
+        sky = sky + env.sky_radiance_lanes(r.normalize_or(Vec3::Y)).scale(0.5);
+    }
+    if let Some(map) = look.reflection {
+        // The terrain above the water, where the mirrored view ray meets it, replaces the sky.
+        let reflected = (n.scale(2.0 * cos_i) - to_eye).normalize_or(Vec3::Y);
+        for i in 0..live {
+            let r = reflected.lane(i);
+            if r.y > 0.0 {
+                if let Some(t) = map.sample(p.lane(i), r) {
+                    sky.set_lane(i, t);
+                }
+            }
+        }
+    }
+
+    let lit = lambert_lanes(env, p, n);
+    let body = match look.texture {
+        Some(_) => Vec3Lanes::from_fn(|i| look.body_color(p.x.0[i], p.z.0[i])) * lit,
+        None => lit * m.color,
+    };
+    let mut transmitted = body;
+    let refracted = refract_lanes(-to_eye, n, 1.0 / m.refractive_index);
+    let bottom_lanes = if look.seabed.anywhere() { live } else { 0 };
+    for i in 0..bottom_lanes {
+        let t = refracted.lane(i);
+        // Beyond the critical angle `refract` gives no ray (a NaN lane here): only the body shows.
+        if t.y.is_nan() || t.y >= -1e-4 {
+            continue;
+        }
+        if let Some((path, height, albedo)) = bottom_hit(look.seabed, p.lane(i), t) {
+            let bottom = albedo * bottom_irradiance(env, m, p.y.0[i].max(0.0) - height);
+            let transmittance = (-m.absorption * path).exp();
+            let v = bottom * transmittance + body.lane(i) * (Vec3::ONE - transmittance);
+            transmitted.set_lane(i, v);
+        }
+    }
+
+    let mut water = sky.scale(f) + transmitted.scale(1.0 - f);
+    if m.specular > 0.0 {
+        let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
+        water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular);
+    }
+    let foam = points.foam;
+    if foam.gt(0.0).any() {
+        let foam_light = lambert_lanes(env, p, Vec3Lanes::splat(Vec3::Y)) * m.foam_color;
+        water = foam.gt(0.0).select3(water.lerp(foam_light, foam.min(1.0)), water);
+    }
+    if env.sky.sky().haze_distance > 0.0 {
+        // Aerial perspective: distant water fades into the horizon's haze.
+        for i in 0..live {
+            water.set_lane(i, env.haze(p.lane(i), water.lane(i)));
+        }
+    }
+    water
+}
+
+/// A run of water points to shade together ([`shade_water_run`]): point `i` of `len`, as
+/// (world position m, normal of any length, foam in [0, 1]), and the unresolved slope variance of
+/// a batch of them from their positions and unit normals.
+pub trait WaterRun: Sync {
+    /// Number of points.
+    fn len(&self) -> usize;
+    /// Whether there are none.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Point `i`, `i < len()`.
+    fn point(&self, i: usize) -> (Vec3, Vec3, f32);
+    /// Unresolved slope variance of a batch of points (0: none).
+    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes;
+}
+
+/// Shades every point of `run` into `out` (as many), a batch at a time through
+/// [`shade_water_lanes`], with AVX2 where the CPU has it: the same IEEE operations lane by lane
+/// either way (Rust fuses no multiply-add on its own), so the image does not depend on the CPU.
+pub fn shade_water_run(env: &Environment, look: &WaterLook, lobe: Lobe, run: &impl WaterRun, out: &mut [Vec3]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, checked just above.
+        unsafe { shade_water_run_avx2(env, look, lobe, run, out) };
+        return;
+    }
+    shade_water_run_lanes(env, look, lobe, run, out);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn shade_water_run_avx2(env: &Environment, look: &WaterLook, lobe: Lobe, run: &impl WaterRun, out: &mut [Vec3]) {
+    shade_water_run_lanes(env, look, lobe, run, out);
+}
+
+#[inline(always)]
+fn shade_water_run_lanes(env: &Environment, look: &WaterLook, lobe: Lobe, run: &impl WaterRun, out: &mut [Vec3]) {
+    let n = run.len().min(out.len());
+    for (start, out) in (0..n).step_by(crate::math::LANES).zip(out[..n].chunks_mut(crate::math::LANES)) {
+        let live = out.len();
+        // Lanes past the run repeat its first point of the batch and are dropped.
+        let (mut position, mut normal, mut foam) =
+            (Vec3Lanes::splat(Vec3::ZERO), Vec3Lanes::splat(Vec3::ZERO), Lanes::splat(0.0));
+        for i in 0..crate::math::LANES {
+            let (p, n, f) = run.point(start + if i < live { i } else { 0 });
+            position.set_lane(i, p);
+            normal.set_lane(i, n);
+            foam.0[i] = f;
+        }
+        let normal = normal.normalize_or(Vec3::Y);
+        let unresolved = run.unresolved(position, normal);
+        let c = shade_water_lanes(env, look, lobe, &WaterPoints { position, normal, foam, unresolved }, live);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = c.lane(i);
+        }
+    }
+}
+
+/// [`fresnel_dielectric`] per lane.
+#[inline(always)]
+fn fresnel_dielectric_lanes(cos_incident: Lanes, ior: f32) -> Lanes {
+    let cos_i = cos_incident.max(0.0).min(1.0);
+    let sin_t2 = (1.0 - cos_i * cos_i) / (ior * ior);
+    let cos_t = (1.0 - sin_t2).max(0.0).sqrt();
+    let rs = (cos_i - ior * cos_t) / (cos_i + ior * cos_t);
+    let rp = (ior * cos_i - cos_t) / (ior * cos_i + cos_t);
+    // Total internal reflection (from inside water) reflects everything.
+    sin_t2.lt(1.0).select(0.5 * (rs * rs + rp * rp), 1.0)
+}
+
+/// [`refract`] per lane; lanes past the critical angle get NaN.
+#[inline(always)]
+fn refract_lanes(incident: Vec3Lanes, n: Vec3Lanes, eta: f32) -> Vec3Lanes {
+    let cos_i = -n.dot(incident);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    let cos_t = (1.0 - sin2_t).sqrt(); // NaN past the critical angle
+    incident.scale(eta) + n.scale(eta * cos_i - cos_t)
+}
+
+/// [`super::lambert`] per lane.
+#[inline(always)]
+fn lambert_lanes(env: &Environment, p: Vec3Lanes, n: Vec3Lanes) -> Vec3Lanes {
+    let mut acc = Vec3Lanes::splat(env.ambient);
+    for light in env.lights {
+        let (to_light, radiance) = incident_lanes(light, p);
+        acc = acc + radiance.scale(n.dot(to_light).max(0.0));
+    }
+    acc
+}
+
+/// [`super::specular`] per lane.
+#[inline(always)]
+fn specular_lanes(
+    env: &Environment,
+    p: Vec3Lanes,
+    n: Vec3Lanes,
+    to_eye: Vec3Lanes,
+    lobe: Lobe,
+    shininess: Lanes,
+) -> Vec3Lanes {
+    let mut acc = Vec3Lanes::splat(Vec3::ZERO);
+    for light in env.lights {
+        let (l, radiance) = incident_lanes(light, p);
+        let n_dot_l = n.dot(l);
+        let c = match lobe {
+            Lobe::Phong => (n.scale(2.0 * n_dot_l) - l).dot(to_eye),
+            Lobe::BlinnPhong => n.dot((l + to_eye).normalize_or(Vec3::ZERO)),
+        };
+        let lit = n_dot_l.gt(0.0).and(c.gt(0.0));
+        let power = Lanes::from_fn(|i| fast_pow(c.0[i].max(0.0), shininess.0[i]));
+        acc = acc + radiance.scale(lit.select(power, 0.0));
+    }
+    acc
+}
+
+/// A light's direction and radiance at each lane's point ([`Light::incident`]).
+#[inline(always)]
+fn incident_lanes(light: &Light, p: Vec3Lanes) -> (Vec3Lanes, Vec3Lanes) {
+    match *light {
+        Light::Directional { .. } => {
+            let inc = light.incident(Vec3::ZERO);
+            (Vec3Lanes::splat(inc.to_light), Vec3Lanes::splat(inc.radiance))
+        }
+        Light::Point { position, color, intensity } => {
+            let d = Vec3Lanes::splat(position) - p;
+            let r2 = d.dot(d).max(1e-6);
+            (d.scale(1.0 / r2.sqrt()), Vec3Lanes::splat(color * intensity).scale(1.0 / r2))
+        }
     }
 }
 
@@ -227,6 +462,7 @@ mod tests {
     }
 
     fn env<'a>(lights: &'a [Light], sky: &'a Sky) -> Environment<'a> {
+        let sky = Box::leak(Box::new(crate::scene::SkyRadiance::new(sky)));
         Environment { lights, ambient: Vec3::splat(0.1), sky, sun: None, eye: Vec3::new(0.0, 10.0, 0.0), time: 0.0 }
     }
 

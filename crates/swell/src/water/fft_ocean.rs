@@ -418,6 +418,23 @@ fn normal_of(f: &Fields) -> Vec3 {
 }
 
 impl WaveModel for FftOcean {
+    /// Every stored wave vector of every cascade: `k^2 (|h0(k)|^2 + |h0(-k)|^2)`, counted twice
+    /// for the rows that stand for their mirror too (as [`FftOcean::exact_displacement`] sums).
+    fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
+        for c in &self.cascades {
+            let dk = std::f64::consts::TAU / f64::from(c.patch);
+            for (nx, nz, h0, hm, _) in c.half_spectrum() {
+                let energy = f64::from(h0.norm_sqr()) + f64::from(hm.norm_sqr());
+                if energy == 0.0 {
+                    continue;
+                }
+                let k = (f64::from(nx) * dk).hypot(f64::from(nz) * dk);
+                let w = if nx == 0 { 1.0 } else { 2.0 };
+                out.push((k as f32, (w * k * k * energy) as f32));
+            }
+        }
+    }
+
     /// Samples the fields of the last [`WaveModel::advance`] at every vertex's rest position; `t`
     /// must be that step's time (the World always advances first), the fields are not re-synthesised.
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {

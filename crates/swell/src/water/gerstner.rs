@@ -215,6 +215,13 @@ impl PointWave for Gerstner {
 }
 
 impl WaveModel for Gerstner {
+    fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
+        for w in &self.waves {
+            let k = std::f32::consts::TAU / w.wavelength;
+            out.push((k, 0.5 * (w.amplitude * k).powi(2)));
+        }
+    }
+
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
         self.sum.evaluate(grid, t, positions, normals);
     }

@@ -31,7 +31,7 @@ pub use foam::{
 };
 pub use gerstner::{Gerstner, GerstnerSpec, GerstnerWave, MAX_GERSTNER_WAVES};
 pub use gerstner_tessendorf::{GerstnerTessendorf, TessendorfParams, TessendorfWave, MAX_TESSENDORF_WAVES};
-pub use model_params::ModelParams;
+pub use model_params::{ModelParams, SurfaceFlow};
 pub use noise_waves::{NoiseFrame, NoiseParams, NoiseWaves, MAX_NOISE_OCTAVES};
 pub use radial_wave::{RadialWave, RadialWaveParams};
 pub use river::{River, RiverParams};

@@ -8,6 +8,16 @@
 use super::WaveModel;
 use crate::error::Result;
 
+/// A surface that carries a sliding texture with its flow (paper 004's river): the renderer
+/// slides the water's texture by `velocity t` and repeats it every `texture_length`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceFlow {
+    /// Velocity of the surface in the model's own frame, [x, z] m/s.
+    pub velocity: glam::Vec2,
+    /// Length of one texture repeat in the model's own frame, metres, > 0.
+    pub texture_length: f32,
+}
+
 /// A wave model's parameters as a scene holds them (`[water]` with `model = "..."`).
 ///
 /// Keys are named under `water` in errors (`water.waves[2].speed`).
@@ -53,5 +63,11 @@ pub trait ModelParams {
     /// ([`WaveModel::disturb`] returns true). Lets a caller decide without building the model.
     fn takes_disturbances(&self) -> bool {
         false
+    }
+
+    /// The flow that slides the water's texture, for models whose water visibly moves along the
+    /// surface (the river); `None` (the default) for waves, whose water stays in place.
+    fn surface_flow(&self) -> Option<SurfaceFlow> {
+        None
     }
 }

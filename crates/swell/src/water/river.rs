@@ -18,7 +18,10 @@
 //! `y = a sin(pi u) sin(2 pi (z - v t) / wavelength)`, u in [0, 1] across the river.
 //!
 //! The water appears to flow because the renderer slides a tiling texture downstream:
-//! [`River::uv_offset`] is the offset (in texture repeats) at time t. The grid's x extent is not
+//! [`River::uv_offset`] is the offset (in texture repeats) at time t, and
+//! [`ModelParams::surface_flow`] hands the flow to the scene, whose water material then slides
+//! its texture (a procedural pattern of streaks by default, `[water.material] texture` to choose
+//! another or an image file) at `flow_speed`, one repeat per `texture_length`. The grid's x extent is not
 //! used: x comes from the banks; the grid's z extent and rows give the river's length and N.
 
 use std::f32::consts::{PI, TAU};
@@ -186,6 +189,12 @@ impl ModelParams for RiverParams {
 
     fn build(&self) -> Result<Box<dyn WaveModel>> {
         Ok(Box::new(River::new(*self)?))
+    }
+
+    /// Downstream (+Z) at `flow_speed`, repeating every `texture_length`: the renderer's sliding
+    /// texture moves by [`River::uv_offset`] repeats per unit of time.
+    fn surface_flow(&self) -> Option<super::SurfaceFlow> {
+        Some(super::SurfaceFlow { velocity: Vec2::new(0.0, self.flow_speed), texture_length: self.texture_length })
     }
 }
 

@@ -148,6 +148,14 @@ impl PointWave for SteepSines {
 }
 
 impl WaveModel for SteepSines {
+    /// `A ((sin S + 1) / 2)^e` is a sine of amplitude A/2 for e = 1; sharper crests (larger e)
+    /// are counted as that sine, a lower bound on their slopes.
+    fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
+        for w in &self.params.waves {
+            out.push((w.frequency, 0.5 * (0.5 * w.amplitude * w.frequency).powi(2)));
+        }
+    }
+
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
         evaluate_pointwise(self, grid, t, positions, normals);
     }

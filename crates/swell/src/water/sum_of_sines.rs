@@ -130,6 +130,13 @@ impl PointWave for SumOfSines {
 }
 
 impl WaveModel for SumOfSines {
+    fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
+        for w in &self.waves {
+            let k = std::f32::consts::TAU / w.wavelength;
+            out.push((k, 0.5 * (w.amplitude * k).powi(2)));
+        }
+    }
+
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
         evaluate_pointwise(self, grid, t, positions, normals);
     }

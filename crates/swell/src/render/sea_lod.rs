@@ -1,0 +1,180 @@
+//! The unbounded sea's view-dependent state: the camera-following mesh ([`Clipmap`]), displaced
+//! each frame by world position from the wave model, and the footprint filter that tells the
+//! per-pixel shading how much of the slope spectrum a pixel cannot resolve.
+//!
+//! Filtering (Bruneton, Neyret and Holzschuch 2010): a ring of spacing `s` carries the waves
+//! longer than `2 s`; the shorter ones are point-sampled at its vertices, which is where far water
+//! shimmers. Their share of the slope variance is moved from the geometry to the BRDF: each
+//! vertex normal keeps only the resolved share of its tilt (the slope is scaled by
+//! `sqrt(1 - u)`, `u` the fraction of the variance unresolved at that vertex, so the geometric
+//! normals carry the resolved variance), and each pixel adds back, as roughness, the variance of
+//! the waves shorter than twice the larger of its footprint and the ring's spacing
+//! ([`FootprintFilter::variance`]). The scaling treats all waves alike (a long swell far out loses
+//! tilt with the short waves); per-wave removal from the geometry is left for later. The flat far
+//! field beyond the rings takes the whole variance (`far_field_pass.rs`).
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::math::{Lanes, Vec3Lanes};
+use crate::mesh::Clipmap;
+use crate::scene::{Camera, WaterBody};
+use crate::shading::UnresolvedSlopes;
+
+/// The renderer's unbounded-sea mesh, kept between frames (rebuilt when the LOD settings change).
+#[derive(Default)]
+pub struct SeaLod {
+    /// The rings and the (levels, ring cells, spacing) they were built with.
+    clipmap: Option<((u32, u32, u32), Clipmap)>,
+}
+
+impl SeaLod {
+    /// Moves the rings under `camera`, displaces them with `water`'s model at time `t` (s),
+    /// places them in the world and moves the slopes no pixel of a `rows`-row image resolves from
+    /// their normals to the shading; returns them, or `None` when the settings cannot make a mesh
+    /// (validation refuses those first, so the caller then draws the patch).
+    pub fn update(&mut self, water: &WaterBody, camera: &Camera, t: f64, rows: u32) -> Option<&Clipmap> {
+        let lod = water.lod;
+        let spacing = lod.spacing.unwrap_or_else(|| {
+            let s = water.mesh.grid.spacing();
+            s.x.min(s.y)
+        });
+        let key = (lod.levels, lod.ring_cells, spacing.to_bits());
+        if self.clipmap.as_ref().map(|(k, _)| *k) != Some(key) {
+            self.clipmap = Some((key, Clipmap::new(lod.levels, lod.ring_cells, spacing).ok()?));
+        }
+        let (_, clipmap) = self.clipmap.as_mut()?;
+        let eye = water.placement.to_local_xz(Vec2::new(camera.eye.x, camera.eye.z));
+        clipmap.follow(eye);
+        clipmap.displace(water.model.as_ref(), t);
+        water.placement.apply_to(&mut clipmap.positions, &mut clipmap.normals);
+        let filter = FootprintFilter::new(&water.slopes, camera, rows, clipmap, water.placement.scale);
+        let total = water.slopes.total();
+        if total > 0.0 {
+            let Clipmap { positions, normals, .. } = &mut *clipmap;
+            normals.par_iter_mut().zip(positions.par_iter()).for_each(|(n, &p)| {
+                // The share of the slope variance this vertex's pixel resolves, and the tilt that
+                // leaves the geometric normals with it: slope (dh/dx, dh/dz) = -(n.x, n.z) / n.y,
+                // scaled by its square root.
+                let keep = (1.0 - filter.variance(p, *n) / total).max(0.0).sqrt();
+                if keep < 1.0 {
+                    let y = n.y.abs().max(1e-3);
+                    *n = Vec3::new(n.x * keep, y, n.z * keep).normalize_or(Vec3::Y);
+                }
+            });
+        }
+        Some(clipmap)
+    }
+}
+
+/// A pixel averages over its footprint (a box), which weakens waves a few footprints long and
+/// removes one exactly a footprint long, while a single sample per pixel catches them at full
+/// strength: waves shorter than twice this many footprints count as unresolved. 3 was fitted
+/// against the 4 x 4 supersampled reference of `tests/unbounded_sea.rs` (far-band RMS, ocean:
+/// 8.9 grey levels at 1 (Nyquist), 6.3 at 2, 4.9 at 3; sea: 7.7, 4.2, 2.3).
+const FOOTPRINT_WIDTH: f32 = 3.0;
+
+/// How much slope variance each pixel of the unbounded sea leaves unresolved.
+#[derive(Clone, Copy, Debug)]
+pub struct FootprintFilter<'a> {
+    slopes: &'a UnresolvedSlopes,
+    eye: Vec3,
+    /// Angle (rad) one pixel spans, vertically.
+    pixel_angle: f32,
+    /// World (x, z) the rings are centred on.
+    center: Vec2,
+    /// Finest ring spacing (m) and ring side in cells.
+    spacing: f32,
+    ring_cells: f32,
+}
+
+impl<'a> FootprintFilter<'a> {
+    /// For `camera` drawing `height` pixel rows (the supersampled height when supersampling) over
+    /// `clipmap`'s rings (world placement `world_scale`).
+    pub fn new(
+        slopes: &'a UnresolvedSlopes,
+        camera: &Camera,
+        height: u32,
+        clipmap: &Clipmap,
+        world_scale: f32,
+    ) -> Self {
+        let pixel_angle = 2.0 * (0.5 * camera.fov_y_deg.to_radians()).tan() / height.max(1) as f32;
+        Self {
+            slopes,
+            eye: camera.eye,
+            pixel_angle,
+            center: Vec2::new(camera.eye.x, camera.eye.z),
+            spacing: clipmap.level_spacing(0) * world_scale,
+            ring_cells: clipmap.grids()[0].cells_x as f32,
+        }
+    }
+
+    /// Slope variance (both axes) the pixel showing world point `p` with mean normal `n` cannot
+    /// resolve: the waves shorter than twice the larger of its footprint (its width at that
+    /// distance, stretched by the grazing angle) and the ring's vertex spacing there.
+    #[inline]
+    pub fn variance(&self, p: Vec3, n: Vec3) -> f32 {
+        let to_eye = self.eye - p;
+        let distance = to_eye.length();
+        let cos = (n.dot(to_eye) / distance.max(1e-6)).abs().max(0.05);
+        let footprint = distance * self.pixel_angle / cos.sqrt();
+        // Ring k covers Chebyshev radii [N/4, N/2] s_k about the centre: s_k <= 4 r / N.
+        let r = (Vec2::new(p.x, p.z) - self.center).abs().max_element();
+        let mesh = (4.0 * r / self.ring_cells).max(self.spacing);
+        self.slopes.unresolved(FOOTPRINT_WIDTH * footprint.max(mesh))
+    }
+
+    /// [`Self::variance`] of eight points at once.
+    #[inline(always)]
+    pub fn variance_lanes(&self, p: Vec3Lanes, n: Vec3Lanes) -> Lanes {
+        let to_eye = Vec3Lanes::splat(self.eye) - p;
+        let distance = to_eye.length();
+        let cos = (n.dot(to_eye) / distance.max(1e-6)).abs().max(0.05);
+        let footprint = distance * self.pixel_angle / cos.sqrt();
+        let r = (p.x - self.center.x).abs().max((p.z - self.center.y).abs());
+        let mesh = (4.0 * r / self.ring_cells).max(self.spacing);
+        let width = FOOTPRINT_WIDTH * footprint.max(mesh);
+        self.slopes.unresolved_lanes(width)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{preset, World};
+
+    /// `height_at` answers on the surface as drawn: at the vertices of the rings (every level),
+    /// the world's height query gives the vertex's height, for a Gerstner sea (which moves water
+    /// sideways, so the query inverts that motion) and the FFT ocean (whose cascades tile).
+    #[test]
+    fn height_queries_agree_with_the_drawn_rings() {
+        for name in ["sea", "ocean"] {
+            let mut world = World::new(preset(name).unwrap()).unwrap();
+            world.update(2.5).unwrap();
+            let mut lod = SeaLod::default();
+            let water = world.water.as_ref().unwrap();
+            let clipmap = lod.update(water, &world.scene.camera, world.time(), 720).unwrap();
+            let mut worst = 0.0f32;
+            for (i, p) in clipmap.positions.iter().enumerate().step_by(97) {
+                let h = world.water_height_at(p.x, p.z).unwrap();
+                worst = worst.max((h - p.y).abs());
+                assert!((h - p.y).abs() < 2e-3, "{name}: vertex {i} at {p}: query {h}");
+            }
+            assert!(worst.is_finite());
+        }
+    }
+
+    #[test]
+    fn far_pixels_leave_more_slopes_unresolved_than_near_ones() {
+        let world = World::new(preset("ocean").unwrap()).unwrap();
+        let water = world.water.as_ref().unwrap();
+        let mut lod = SeaLod::default();
+        let camera = world.scene.camera;
+        let clipmap = lod.update(water, &camera, 0.0, 720).unwrap();
+        let f = FootprintFilter::new(&water.slopes, &camera, 720, clipmap, 1.0);
+        let at = |d: f32| f.variance(camera.eye + Vec3::new(0.0, -camera.eye.y, -d), Vec3::Y);
+        let (near, mid, far) = (at(5.0), at(200.0), at(3000.0));
+        assert!(near < mid && mid < far && far <= water.slopes.total() + 1e-6, "{near} {mid} {far}");
+        assert!(water.slopes.total() > 0.0);
+    }
+}

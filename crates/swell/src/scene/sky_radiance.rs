@@ -1,0 +1,250 @@
+//! The sky made ready to look up: what the renderer calls, per pixel of background and per
+//! reflected ray, instead of the model.
+//!
+//! The `gradient` sky is evaluated directly (it is a square root and a blend). The `preetham` sky
+//! costs about a dozen `exp`, `acos` and `tan` per direction, too slow for every pixel of a
+//! 1280x720 frame at 60 frames per second on two cores, so it is tabulated once per distinct
+//! `[sky]` over the upper hemisphere and looked up bilinearly. The table is indexed by the
+//! stereographic projection of the direction from the nadir, `(x, z) / (1 + y)`, which maps the
+//! hemisphere onto the unit disc with cells of 1.8° at the horizon and 3.6° at the zenith at
+//! [`TABLE_SIDE`] = 128: one division per lookup and no trigonometry.
+
+use crate::math::Vec3Lanes;
+use glam::{Vec3, Vec3A};
+use rayon::prelude::*;
+
+use super::preetham::PreethamSky;
+use super::{Sky, SkyModel};
+
+/// Cells per side of the Preetham table (128² entries, 192 KiB, about 2 ms to build on one core).
+pub const TABLE_SIDE: usize = 128;
+
+/// A [`Sky`] with whatever it needs to be looked up fast; [`SkyRadiance::radiance`] is the one
+/// call for the sky's radiance in a direction.
+#[derive(Clone, Debug)]
+pub struct SkyRadiance {
+    /// The keys this was built for.
+    sky: Sky,
+    /// `preetham`: linear RGB radiance at the centres of a [`TABLE_SIDE`]² grid over
+    /// u, v in [−1, 1] (row v, column u), cells outside the unit disc holding the horizon in
+    /// their direction; empty for `gradient`.
+    /// (16-byte `Vec3A` entries: one aligned SIMD load and lerp each.)
+    table: Vec<Vec3A>,
+}
+
+impl SkyRadiance {
+    /// Builds the lookup for `sky` (tabulates a `preetham` sky, on the rayon pool).
+    pub fn new(sky: &Sky) -> Self {
+        let mut s = Self { sky: *sky, table: Vec::new() };
+        s.build();
+        s
+    }
+
+    /// Makes this the lookup for `sky`, rebuilding only when a key changed (the renderer calls it
+    /// every frame; the table's buffer is reused).
+    pub fn update(&mut self, sky: &Sky) {
+        if *sky != self.sky {
+            self.sky = *sky;
+            self.build();
+        }
+    }
+
+    /// Whether the sky is looked up in a table (smooth at the scale of pixels, so callers may
+    /// sample it sparsely) rather than evaluated directly.
+    pub fn is_tabulated(&self) -> bool {
+        !self.table.is_empty()
+    }
+
+    /// The keys it was built for.
+    pub fn sky(&self) -> &Sky {
+        &self.sky
+    }
+
+    fn build(&mut self) {
+        if self.sky.model != SkyModel::Preetham {
+            self.table.clear();
+            return;
+        }
+        let sky = self.sky;
+        let model = PreethamSky::new(sky.turbidity, sky.to_sun());
+        self.table.resize(TABLE_SIDE * TABLE_SIDE, Vec3A::ZERO);
+        self.table.par_chunks_mut(TABLE_SIDE).enumerate().for_each(|(j, row)| {
+            let v = cell_centre(j);
+            for (i, out) in row.iter_mut().enumerate() {
+                *out = sky.preetham(&model, from_disc(cell_centre(i), v)).into();
+            }
+        });
+    }
+
+    /// Radiance (linear RGB, the renderer's units) of the sky along unit world direction `dir`,
+    /// without the sun disc.
+    #[inline]
+    pub fn radiance(&self, dir: Vec3) -> Vec3 {
+        if self.table.is_empty() {
+            return self.sky.gradient(dir);
+        }
+        if dir.y >= 0.0 {
+            let k = 1.0 / (1.0 + dir.y);
+            return self.lookup(dir.x * k, dir.z * k);
+        }
+        let l = (dir.x * dir.x + dir.z * dir.z).sqrt();
+        let horizon = if l > 1e-6 { self.lookup(dir.x / l, dir.z / l) } else { self.lookup(1.0, 0.0) };
+        horizon.lerp(self.sky.ground * self.sky.night_fade(), (-dir.y * 8.0).min(1.0))
+    }
+
+    /// Bilinear lookup at disc coordinates (u, v).
+    #[inline]
+    fn lookup(&self, u: f32, v: f32) -> Vec3 {
+        // Cell coordinates, clamped to the centres of the edge cells (max/min also send NaN to 0).
+        const HALF: f32 = 0.5 * TABLE_SIDE as f32;
+        const LAST: f32 = (TABLE_SIDE - 2) as f32;
+        let fx = (u * HALF + (HALF - 0.5)).max(0.0);
+        let fy = (v * HALF + (HALF - 0.5)).max(0.0);
+        // The lower corner stays one short of the last cell so that its neighbour exists; the
+        // weight then reaches 1 at the last centre.
+        let (bx, by) = (fx.min(LAST), fy.min(LAST));
+        let (i, j) = (bx as usize, by as usize);
+        let (tx, ty) = ((fx - i as f32).min(1.0), (fy - j as f32).min(1.0));
+        let k = j * TABLE_SIDE + i;
+        let t = &self.table[k..k + TABLE_SIDE + 2];
+        let top = t[0].lerp(t[1], tx);
+        let bottom = t[TABLE_SIDE].lerp(t[TABLE_SIDE + 1], tx);
+        top.lerp(bottom, ty).into()
+    }
+
+    /// [`Self::radiance`] along many unit directions: the gradient computed for all lanes at
+    /// once, the table read lane by lane.
+    #[inline(always)]
+    pub fn radiance_lanes(&self, dir: Vec3Lanes) -> Vec3Lanes {
+        if self.table.is_empty() {
+            return self.sky.gradient_lanes(dir);
+        }
+        Vec3Lanes::from_fn(|i| self.radiance(dir.lane(i)))
+    }
+
+    /// Aerial perspective: `color` of a surface at world `p` seen from `eye`, faded towards the
+    /// sky's horizon in the view's direction by `1 − exp(−d / haze_distance)` over the distance
+    /// d; `color` unchanged when `haze_distance` is 0.
+    #[inline]
+    pub fn aerial_perspective(&self, eye: Vec3, p: Vec3, color: Vec3) -> Vec3 {
+        let h = self.sky.haze_distance;
+        if h <= 0.0 {
+            return color;
+        }
+        let d = p - eye;
+        let fade = 1.0 - (-d.length() / h).exp();
+        let horizon = self.radiance(Vec3::new(d.x, 0.0, d.z).normalize_or(Vec3::X));
+        color.lerp(horizon, fade)
+    }
+}
+
+/// Disc coordinate of the centre of cell `i`, in (−1, 1).
+fn cell_centre(i: usize) -> f32 {
+    (i as f32 + 0.5) / TABLE_SIDE as f32 * 2.0 - 1.0
+}
+
+/// The unit direction whose stereographic projection from the nadir is (u, v); points outside
+/// the unit disc give the horizon in their direction.
+fn from_disc(u: f32, v: f32) -> Vec3 {
+    let r2 = u * u + v * v;
+    if r2 >= 1.0 {
+        let r = r2.sqrt();
+        return Vec3::new(u / r, 0.0, v / r);
+    }
+    let k = 1.0 / (1.0 + r2);
+    Vec3::new(2.0 * u * k, (1.0 - r2) * k, 2.0 * v * k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn preetham(elevation: f32, azimuth: f32, turbidity: f32) -> Sky {
+        Sky {
+            model: SkyModel::Preetham,
+            sun_elevation_deg: elevation,
+            sun_azimuth_deg: azimuth,
+            turbidity,
+            ..Sky::default()
+        }
+    }
+
+    fn directions() -> impl Iterator<Item = Vec3> {
+        (0..40).flat_map(|a| {
+            (0..12).map(move |e| {
+                let (az, el) = ((a as f32 * 9.1).to_radians(), (e as f32 * 7.3 + 0.4).to_radians());
+                Vec3::new(az.sin() * el.cos(), el.sin(), -az.cos() * el.cos())
+            })
+        })
+    }
+
+    #[test]
+    fn the_table_matches_the_model_within_two_percent() {
+        for (el, az, t) in [(45.0, 135.0, 2.5), (8.0, 250.0, 3.0), (75.0, 10.0, 6.0)] {
+            let sky = preetham(el, az, t);
+            let table = SkyRadiance::new(&sky);
+            for d in directions() {
+                let (exact, fast) = (sky.radiance(d), table.radiance(d));
+                // Relative to the brightest channel; the circumsolar peak is the steepest part.
+                let err = (exact - fast).abs().max_element() / exact.max_element().max(1e-3);
+                let near_sun = d.dot(sky.to_sun()) > 0.99;
+                assert!(err < if near_sun { 0.1 } else { 0.02 }, "sun {el}/{az}, T {t}, {d}: {exact} vs {fast}");
+            }
+            // Below the horizon: the horizon blending into the ground, as in the gradient sky.
+            let down = table.radiance(Vec3::new(0.3, -0.9, 0.2).normalize());
+            assert!((down - sky.ground).abs().max_element() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn the_gradient_sky_is_looked_up_exactly_as_before() {
+        let sky = Sky::default();
+        let r = SkyRadiance::new(&sky);
+        for d in directions().chain([Vec3::new(0.2, -0.5, 0.8).normalize(), -Vec3::Y]) {
+            assert_eq!(r.radiance(d), sky.radiance(d));
+        }
+        // Haze off by default: colours pass unchanged.
+        let c = Vec3::new(0.1, 0.2, 0.3);
+        assert_eq!(r.aerial_perspective(Vec3::ZERO, Vec3::splat(1e4), c), c);
+    }
+
+    #[test]
+    fn the_sky_is_brighter_near_the_sun_and_the_luminance_scale_scales_it() {
+        let sky = preetham(30.0, 90.0, 3.0);
+        let r = SkyRadiance::new(&sky);
+        let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+        let near = lum(r.radiance(Vec3::new(1.0, 0.62, 0.0).normalize()));
+        let opposite = lum(r.radiance(Vec3::new(-1.0, 0.62, 0.0).normalize()));
+        assert!(near > 2.0 * opposite, "{near} vs {opposite}");
+        let brighter = SkyRadiance::new(&Sky { luminance_scale: 0.1, ..sky });
+        let d = Vec3::new(0.3, 0.5, -0.4).normalize();
+        assert!((brighter.radiance(d) - 2.0 * r.radiance(d)).abs().max_element() < 1e-5);
+        // A clear noon sky in the gradient's range: zenith and horizon between 0.05 and 1.5.
+        let noon = SkyRadiance::new(&preetham(60.0, 180.0, 2.5));
+        for d in [Vec3::Y, Vec3::new(0.0, 0.05, -1.0).normalize()] {
+            let c = noon.radiance(d);
+            assert!(c.min_element() > 0.02 && c.max_element() < 1.5, "{d}: {c}");
+        }
+        // After sunset the sky fades out.
+        let night = SkyRadiance::new(&preetham(-10.0, 180.0, 2.5));
+        assert_eq!(night.radiance(Vec3::Y), Vec3::ZERO);
+    }
+
+    #[test]
+    fn haze_fades_distant_surfaces_to_the_horizon() {
+        let sky = Sky { haze_distance: 100.0, ..preetham(20.0, 200.0, 4.0) };
+        let r = SkyRadiance::new(&sky);
+        let eye = Vec3::new(0.0, 5.0, 0.0);
+        let c = Vec3::new(0.05, 0.1, 0.02);
+        let horizon = r.radiance(Vec3::new(0.0, 0.0, -1.0));
+        let near = r.aerial_perspective(eye, Vec3::new(0.0, 0.0, -1.0), c);
+        let mid = r.aerial_perspective(eye, Vec3::new(0.0, 0.0, -100.0), c);
+        let far = r.aerial_perspective(eye, Vec3::new(0.0, 0.0, -1e5), c);
+        // 5.1 m away: 5 % of the way.
+        assert!((near - c).length() < 0.06 * (horizon - c).length());
+        // At d = haze_distance (about 100 m): 1 − 1/e of the way.
+        let expected = c.lerp(horizon, 1.0 - (-(100.0f32.hypot(5.0)) / 100.0).exp());
+        assert!((mid - expected).abs().max_element() < 1e-4, "{mid} vs {expected}");
+        assert!((far - horizon).abs().max_element() < 1e-4);
+    }
+}
