@@ -115,23 +115,24 @@ pub fn draw_with<V, S>(
     project_vertices(&mut scratch.window, vertices, width, height);
     setup_and_bin(scratch, vertices, indices, width, height, cull == Cull::Back);
     let chunks = &scratch.chunks;
-    let row = width as usize;
+    for_each_band(target, |band, color, depth| raster_band(chunks, vertices, band, color, depth, shader));
+}
+
+/// Runs `draw` on every band of `target` in parallel, one band per task: bands differ in cost by
+/// orders of magnitude (many small triangles at the horizon, a few large ones in front, none in
+/// the sky), and rayon's adaptive split otherwise leaves one thread a long run of costly bands
+/// while the other waits.
+fn for_each_band(target: &mut Framebuffer, draw: impl Fn(Band, &mut [Vec3], &mut [f32]) + Sync) {
+    let (row, height) = (target.width() as usize, target.height());
     target
         .color
         .par_chunks_mut(row * BAND_ROWS as usize)
         .zip(target.depth.par_chunks_mut(row * BAND_ROWS as usize))
         .enumerate()
-        // One band per task: bands differ in cost by orders of magnitude (many small triangles at
-        // the horizon, a few large ones in front, none in the sky), and rayon's adaptive split
-        // otherwise leaves one thread a long run of costly bands while the other waits.
         .with_max_len(1)
-        .for_each(|(index, (color, depth))| {
-            raster_band(chunks, vertices, Band { index, row, height }, color, depth, shader)
-        });
+        .for_each(|(index, (color, depth))| draw(Band { index, row, height }, color, depth));
 }
 
-/// Which band [`raster_band`] draws: rows `index * BAND_ROWS ..` of an image `row` pixels wide
-/// and `height` high.
 /// [`draw_with`] with deferred shading: the bands are drawn first, keeping only the nearest
 /// fragment of each pixel, then `shade` colours each covered pixel once, a row's run of covered
 /// pixels per call (`fragments` left to right, `colors` as many). The image is bit-identical to
@@ -157,21 +158,16 @@ pub fn draw_deferred_with<V, S>(
     let workers = rayon::current_num_threads().max(1);
     scratch.deferred.resize_with(workers, Default::default);
     let (chunks, deferred) = (&scratch.chunks, &scratch.deferred);
-    let row = width as usize;
-    target
-        .color
-        .par_chunks_mut(row * BAND_ROWS as usize)
-        .zip(target.depth.par_chunks_mut(row * BAND_ROWS as usize))
-        .enumerate()
-        .with_max_len(1)
-        .for_each(|(index, (color, depth))| {
-            // Which worker's buffers a band uses changes nothing in the image: each band resets them.
-            let worker = rayon::current_thread_index().unwrap_or(0) % deferred.len();
-            let mut mine = deferred[worker].lock().unwrap_or_else(|e| e.into_inner());
-            raster_band_deferred(chunks, vertices, Band { index, row, height }, color, depth, &mut mine, shade)
-        });
+    for_each_band(target, |band, color, depth| {
+        // Which worker's buffers a band uses changes nothing in the image: each band resets them.
+        let worker = rayon::current_thread_index().unwrap_or(0) % deferred.len();
+        let mut mine = deferred[worker].lock().unwrap_or_else(|e| e.into_inner());
+        raster_band_deferred(chunks, vertices, band, color, depth, &mut mine, shade)
+    });
 }
 
+/// Which band [`raster_band`] draws: rows `index * BAND_ROWS ..` of an image `row` pixels wide
+/// and `height` high.
 #[derive(Clone, Copy)]
 struct Band {
     index: usize,

@@ -64,10 +64,7 @@ impl WaterRun for Points<'_> {
     }
     #[inline(always)]
     fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
-        match self.filter {
-            Some(f) => f.variance_lanes(position, normal),
-            None => Lanes::splat(0.0),
-        }
+        unresolved(self.filter, position, normal)
     }
 }
 
@@ -88,10 +85,7 @@ impl WaterRun for Pixels<'_> {
     }
     #[inline(always)]
     fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
-        match self.filter {
-            Some(f) => f.variance_lanes(position, normal),
-            None => Lanes::splat(0.0),
-        }
+        unresolved(self.filter, position, normal)
     }
 }
 
@@ -124,4 +118,14 @@ pub fn draw(
     let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading), filter };
     let clip_from_world = frame.clip_from_world;
     draw.draw(fb, mesh, &|p| clip_from_world * Vec4::from((p, 1.0)), material.shading, &shader);
+}
+
+/// The slope variance the unbounded sea's `filter` leaves unresolved at these points; none
+/// without one (a patch is point-sampled).
+#[inline(always)]
+fn unresolved(filter: Option<&FootprintFilter>, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
+    match filter {
+        Some(f) => f.variance_lanes(position, normal),
+        None => Lanes::splat(0.0),
+    }
 }

@@ -53,25 +53,41 @@ impl Texture {
     /// It is a sum of sines with integer wave numbers, so it tiles exactly; the phases come from a
     /// fixed hash, so the pattern is the same on every run.
     pub fn procedural_water(base: Vec3) -> Self {
-        const SIDE: u32 = 256;
         // (k_u, k_v, phase): integer wave numbers per tile keep the pattern periodic.
-        const WAVES: [(f32, f32, f32); 6] =
-            [(3.0, 1.0, 0.3), (-2.0, 3.0, 1.9), (1.0, -4.0, 4.1), (5.0, 2.0, 2.7), (-4.0, -5.0, 5.3), (7.0, -3.0, 0.9)];
+        const WAVES: [(f32, f32, f32, f32); 6] = [
+            (3.0, 1.0, 0.3, 1.0),
+            (-2.0, 3.0, 1.9, 1.0),
+            (1.0, -4.0, 4.1, 1.0),
+            (5.0, 2.0, 2.7, 1.0),
+            (-4.0, -5.0, 5.3, 1.0),
+            (7.0, -3.0, 0.9, 1.0),
+        ];
         let highlight = (base * 2.5 + Vec3::splat(0.08)).min(Vec3::ONE);
         let shadow = base * 0.7;
+        Self::from_sines(&WAVES, |s| {
+            // Ridges where the sum crosses zero: 1 on the crossing, falling off quickly.
+            let ridge = (1.0 - (s * 6.0).abs()).max(0.0).powi(2);
+            let t = 0.5 + 0.5 * s;
+            shadow.lerp(base, t) + (highlight - base) * ridge
+        })
+    }
+
+    /// A 256² tile from a weighted mean `s` in [-1, 1] of sines `(k_u, k_v, phase, weight)` over
+    /// the tile's (u, v) (integer wave numbers: it tiles exactly; fixed phases: the same on every
+    /// run), each texel `colour(s)`.
+    fn from_sines(waves: &[(f32, f32, f32, f32)], colour: impl Fn(f32) -> Vec3) -> Self {
+        const SIDE: u32 = 256;
+        let total: f32 = waves.iter().map(|w| w.3).sum();
         let mut texels = Vec::with_capacity((SIDE * SIDE) as usize);
         for j in 0..SIDE {
             for i in 0..SIDE {
                 let (u, v) = ((i as f32 + 0.5) / SIDE as f32, (j as f32 + 0.5) / SIDE as f32);
-                let s: f32 = WAVES
+                let s: f32 = waves
                     .iter()
-                    .map(|&(ku, kv, ph)| (std::f32::consts::TAU * (ku * u + kv * v) + ph).sin())
+                    .map(|&(ku, kv, ph, w)| w * (std::f32::consts::TAU * (ku * u + kv * v) + ph).sin())
                     .sum::<f32>()
-                    / WAVES.len() as f32;
-                // Ridges where the sum crosses zero: 1 on the crossing, falling off quickly.
-                let ridge = (1.0 - (s * 6.0).abs()).max(0.0).powi(2);
-                let t = 0.5 + 0.5 * s;
-                texels.push(shadow.lerp(base, t) + (highlight - base) * ridge);
+                    / total;
+                texels.push(colour(s));
             }
         }
         Self { width: SIDE, height: SIDE, texels }
@@ -87,7 +103,6 @@ impl Texture {
     /// longer than it is wide, yet broad enough for a mesh shaded per vertex (a few vertices
     /// per streak) to draw it.
     pub fn procedural_streaks(base: Vec3) -> Self {
-        const SIDE: u32 = 256;
         // (k_u, k_v, phase, weight): the first four are the streaks, the last two slow swells of
         // brightness along the flow that make the motion readable at a glance.
         const WAVES: [(f32, f32, f32, f32); 8] = [
@@ -100,25 +115,14 @@ impl Texture {
             (1.0, 2.0, 0.9, 0.7),
             (-2.0, 1.0, 2.0, 0.6),
         ];
-        let total: f32 = WAVES.iter().map(|w| w.3).sum();
         let highlight = (base * 3.0 + Vec3::splat(0.12)).min(Vec3::ONE);
         let shadow = base * 0.55;
-        let mut texels = Vec::with_capacity((SIDE * SIDE) as usize);
-        for j in 0..SIDE {
-            for i in 0..SIDE {
-                let (u, v) = ((i as f32 + 0.5) / SIDE as f32, (j as f32 + 0.5) / SIDE as f32);
-                let s: f32 = WAVES
-                    .iter()
-                    .map(|&(ku, kv, ph, w)| w * (std::f32::consts::TAU * (ku * u + kv * v) + ph).sin())
-                    .sum::<f32>()
-                    / total;
-                // Streaks where the sum peaks: thin bright lines on the crests of the pattern.
-                let streak = ((s - 0.25) / 0.35).clamp(0.0, 1.0).powi(2);
-                let t = (0.5 + 0.9 * s).clamp(0.0, 1.0);
-                texels.push(shadow.lerp(base, t) + (highlight - base) * streak);
-            }
-        }
-        Self { width: SIDE, height: SIDE, texels }
+        Self::from_sines(&WAVES, |s| {
+            // Streaks where the sum peaks: thin bright lines on the crests of the pattern.
+            let streak = ((s - 0.25) / 0.35).clamp(0.0, 1.0).powi(2);
+            let t = (0.5 + 0.9 * s).clamp(0.0, 1.0);
+            shadow.lerp(base, t) + (highlight - base) * streak
+        })
     }
 
     /// Width in texels.
