@@ -189,8 +189,9 @@ fn raster_band<V: Varying, S>(
 ) where
     S: Fn(&Fragment<V>) -> Vec3 + Sync,
 {
-    walk_band(chunks, band, depth, |i, hit, (x, y)| {
-        color[i] = shader(&hit.fragment(chunks, vertices, x, y));
+    walk_band(chunks, band, depth, |i, at| {
+        // The triangle is at hand here: no look-up by index, as the deferred path needs.
+        color[i] = shader(&fragment_of(at.chunk, at.tri, at.triangle, at.cov.linear, vertices, at.cov.x, at.cov.y));
     });
 }
 
@@ -210,23 +211,46 @@ impl Hit {
     #[inline(always)]
     fn fragment<V: Varying>(&self, chunks: &[Chunk<V>], vertices: &[ClipVertex<V>], x: u32, y: u32) -> Fragment<V> {
         let chunk = &chunks[self.chunk as usize];
-        let tri = &chunk.triangles[self.triangle as usize];
-        let varying = if std::mem::size_of::<V>() != 0 {
-            let varying_of = |k: u32| match vertices.get(k as usize) {
-                Some(v) => v.varying,
-                None => chunk.clipped[k as usize - vertices.len()],
-            };
-            let w = tri.perspective_weights(self.linear);
-            let [a, b, d] = chunk.corners[self.triangle as usize];
-            V::weighted(&varying_of(a), &varying_of(b), &varying_of(d), w)
-        } else {
-            V::default()
-        };
-        Fragment { varying, primitive: tri.primitive, x, y }
+        fragment_of(chunk, &chunk.triangles[self.triangle as usize], self.triangle, self.linear, vertices, x, y)
     }
 }
 
-/// Walks every triangle binned to `band` in submission order and calls `nearer(pixel, hit, (x, y))` for
+/// The fragment of triangle `triangle` (`tri`) of `chunk` at pixel (`x`, `y`) with linear weights
+/// `linear`: its perspective-correct varyings.
+#[inline(always)]
+fn fragment_of<V: Varying>(
+    chunk: &Chunk<V>,
+    tri: &SetupTriangle<()>,
+    triangle: u32,
+    linear: [f32; 3],
+    vertices: &[ClipVertex<V>],
+    x: u32,
+    y: u32,
+) -> Fragment<V> {
+    let varying = if std::mem::size_of::<V>() != 0 {
+        let varying_of = |k: u32| match vertices.get(k as usize) {
+            Some(v) => v.varying,
+            None => chunk.clipped[k as usize - vertices.len()],
+        };
+        let w = tri.perspective_weights(linear);
+        let [a, b, d] = chunk.corners[triangle as usize];
+        V::weighted(&varying_of(a), &varying_of(b), &varying_of(d), w)
+    } else {
+        V::default()
+    };
+    Fragment { varying, primitive: tri.primitive, x, y }
+}
+
+/// Where a pixel of a band is covered: the chunk, the triangle (index and setup) and the coverage.
+struct Covered<'a, V> {
+    chunk: &'a Chunk<V>,
+    chunk_index: u32,
+    triangle: u32,
+    tri: &'a SetupTriangle<()>,
+    cov: super::triangle::Coverage,
+}
+
+/// Walks every triangle binned to `band` in submission order and calls `nearer(pixel, covered)` for
 /// each covered pixel whose depth it passes (strictly nearer: the first of equal depths wins),
 /// after writing the new depth.
 #[inline(always)]
@@ -234,7 +258,7 @@ fn walk_band<V: Varying>(
     chunks: &[Chunk<V>],
     band: Band,
     depth: &mut [f32],
-    mut nearer: impl FnMut(usize, Hit, (u32, u32)),
+    mut nearer: impl FnMut(usize, Covered<V>),
 ) {
     let Band { index: band, row, height } = band;
     let y0 = band as u32 * BAND_ROWS;
@@ -247,7 +271,7 @@ fn walk_band<V: Varying>(
                 let z = tri.depth(cov.linear);
                 if z < depth[i] {
                     depth[i] = z;
-                    nearer(i, Hit { chunk: c as u32, triangle: t, linear: cov.linear }, (cov.x, cov.y));
+                    nearer(i, Covered { chunk, chunk_index: c as u32, triangle: t, tri, cov });
                 }
             });
         }
@@ -274,8 +298,8 @@ fn raster_band_deferred<V: Varying, S>(
     hits.resize(n, Hit::default());
     covered.clear();
     covered.resize(n, false);
-    walk_band(chunks, band, depth, |i, hit, _| {
-        hits[i] = hit;
+    walk_band(chunks, band, depth, |i, at| {
+        hits[i] = Hit { chunk: at.chunk_index, triangle: at.triangle, linear: at.cov.linear };
         covered[i] = true;
     });
     let y0 = band.index as u32 * BAND_ROWS;

@@ -119,7 +119,9 @@ impl ShadedDraw {
                         let points: Vec<(Vec3, Vec3, f32)> = tris
                             .chunks_exact(3)
                             .map(|t| {
-                                let [a, b, d] = [0, 1, 2].map(|k| positions[t[k] as usize]);
+                                // Indexed one by one: `[0, 1, 2].map` is not always inlined here.
+                                let (a, b, d) =
+                                    (positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]);
                                 // Triangles wind counter-clockwise seen from their front, so this
                                 // normal points out of it (up, for water and terrain).
                                 let n = (b - a).cross(d - a).normalize_or(Vec3::Y);
