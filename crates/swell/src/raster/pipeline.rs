@@ -108,14 +108,29 @@ pub fn draw_with<V, S>(
     V: Varying,
     S: Fn(&Fragment<V>) -> Vec3 + Sync,
 {
+    if !project_and_bin(scratch, target, vertices, indices, cull) {
+        return;
+    }
+    let chunks = &scratch.chunks;
+    for_each_band(target, |band, color, depth| raster_band(chunks, vertices, band, color, depth, shader));
+}
+
+/// Stages 1 and 2 of a draw into `target`: projects the vertices and sets up and bins the
+/// triangles; false when `target` has no pixels (nothing to draw).
+fn project_and_bin<V: Varying>(
+    scratch: &mut DrawScratch<V>,
+    target: &Framebuffer,
+    vertices: &[ClipVertex<V>],
+    indices: &[u32],
+    cull: Cull,
+) -> bool {
     let (width, height) = (target.width(), target.height());
     if width == 0 || height == 0 {
-        return;
+        return false;
     }
     project_vertices(&mut scratch.window, vertices, width, height);
     setup_and_bin(scratch, vertices, indices, width, height, cull == Cull::Back);
-    let chunks = &scratch.chunks;
-    for_each_band(target, |band, color, depth| raster_band(chunks, vertices, band, color, depth, shader));
+    true
 }
 
 /// Runs `draw` on every band of `target` in parallel, one band per task: bands differ in cost by
@@ -149,12 +164,9 @@ pub fn draw_deferred_with<V, S>(
     V: Varying,
     S: Fn(&[Fragment<V>], &mut [Vec3]) + Sync,
 {
-    let (width, height) = (target.width(), target.height());
-    if width == 0 || height == 0 {
+    if !project_and_bin(scratch, target, vertices, indices, cull) {
         return;
     }
-    project_vertices(&mut scratch.window, vertices, width, height);
-    setup_and_bin(scratch, vertices, indices, width, height, cull == Cull::Back);
     let workers = rayon::current_num_threads().max(1);
     scratch.deferred.resize_with(workers, Default::default);
     let (chunks, deferred) = (&scratch.chunks, &scratch.deferred);
