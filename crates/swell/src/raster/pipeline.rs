@@ -203,7 +203,8 @@ fn raster_band<V: Varying, S>(
 {
     walk_band(chunks, band, depth, |i, at| {
         // The triangle is at hand here: no look-up by index, as the deferred path needs.
-        color[i] = shader(&fragment_of(at.chunk, at.tri, at.triangle, at.cov.linear, vertices, at.cov.x, at.cov.y));
+        let corners = corner_varyings(at.chunk, at.triangle, vertices);
+        color[i] = shader(&fragment_at(at.tri, &corners, at.cov.linear, at.cov.x, at.cov.y));
     });
 }
 
@@ -217,36 +218,28 @@ struct Hit {
     linear: [f32; 3],
 }
 
-impl Hit {
-    /// The fragment this hit shades: the same weights and sums as the immediate path, so the two
-    /// give bit-identical varyings.
-    #[inline(always)]
-    fn fragment<V: Varying>(&self, chunks: &[Chunk<V>], vertices: &[ClipVertex<V>], x: u32, y: u32) -> Fragment<V> {
-        let chunk = &chunks[self.chunk as usize];
-        fragment_of(chunk, &chunk.triangles[self.triangle as usize], self.triangle, self.linear, vertices, x, y)
+/// The varyings of triangle `triangle` of `chunk` at its three (clockwise) corners; defaults
+/// when `V` carries no data (flat shading).
+#[inline(always)]
+fn corner_varyings<V: Varying>(chunk: &Chunk<V>, triangle: u32, vertices: &[ClipVertex<V>]) -> [V; 3] {
+    if std::mem::size_of::<V>() == 0 {
+        return [V::default(); 3];
     }
+    let varying_of = |k: u32| match vertices.get(k as usize) {
+        Some(v) => v.varying,
+        None => chunk.clipped[k as usize - vertices.len()],
+    };
+    let [a, b, d] = chunk.corners[triangle as usize];
+    [varying_of(a), varying_of(b), varying_of(d)]
 }
 
-/// The fragment of triangle `triangle` (`tri`) of `chunk` at pixel (`x`, `y`) with linear weights
-/// `linear`: its perspective-correct varyings.
+/// The fragment of triangle `tri` (whose corners carry `corners`) at pixel (`x`, `y`) with linear
+/// weights `linear`: its perspective-correct varyings. Both draws build fragments here, so they
+/// give bit-identical varyings.
 #[inline(always)]
-fn fragment_of<V: Varying>(
-    chunk: &Chunk<V>,
-    tri: &SetupTriangle<()>,
-    triangle: u32,
-    linear: [f32; 3],
-    vertices: &[ClipVertex<V>],
-    x: u32,
-    y: u32,
-) -> Fragment<V> {
+fn fragment_at<V: Varying>(tri: &SetupTriangle<()>, corners: &[V; 3], linear: [f32; 3], x: u32, y: u32) -> Fragment<V> {
     let varying = if std::mem::size_of::<V>() != 0 {
-        let varying_of = |k: u32| match vertices.get(k as usize) {
-            Some(v) => v.varying,
-            None => chunk.clipped[k as usize - vertices.len()],
-        };
-        let w = tri.perspective_weights(linear);
-        let [a, b, d] = chunk.corners[triangle as usize];
-        V::weighted(&varying_of(a), &varying_of(b), &varying_of(d), w)
+        V::weighted(&corners[0], &corners[1], &corners[2], tri.perspective_weights(linear))
     } else {
         V::default()
     };
@@ -316,13 +309,25 @@ fn raster_band_deferred<V: Varying, S>(
     });
     let y0 = band.index as u32 * BAND_ROWS;
     let row = band.row;
-    for r in 0..n / row {
+    for (r, (hits, covered)) in hits.chunks_exact(row).zip(covered.chunks_exact(row)).enumerate() {
         fragments.clear();
-        for x in 0..row {
-            let i = r * row + x;
-            if covered[i] {
-                fragments.push(hits[i].fragment(chunks, vertices, x as u32, y0 + r as u32));
-            }
+        let y = y0 + r as u32;
+        // Neighbouring pixels of a row mostly share their triangle (about 30 pixels each on the
+        // unbounded sea): its record and its three corners' varyings are looked up once per run,
+        // not per pixel (they are gathered from a vertex array of megabytes).
+        let mut current: Option<(u32, u32, &SetupTriangle<()>, [V; 3])> = None;
+        for (x, (hit, _)) in hits.iter().zip(covered).enumerate().filter(|(_, (_, &c))| c) {
+            let (tri, corners) = match current {
+                Some((c, t, tri, corners)) if c == hit.chunk && t == hit.triangle => (tri, corners),
+                _ => {
+                    let chunk = &chunks[hit.chunk as usize];
+                    let tri = &chunk.triangles[hit.triangle as usize];
+                    let corners = corner_varyings(chunk, hit.triangle, vertices);
+                    current = Some((hit.chunk, hit.triangle, tri, corners));
+                    (tri, corners)
+                }
+            };
+            fragments.push(fragment_at(tri, &corners, hit.linear, x as u32, y));
         }
         if fragments.is_empty() {
             continue;
@@ -330,8 +335,9 @@ fn raster_band_deferred<V: Varying, S>(
         colors.clear();
         colors.resize(fragments.len(), Vec3::ZERO);
         shade(fragments, colors);
+        let out = &mut color[r * row..(r + 1) * row];
         for (f, c) in fragments.iter().zip(colors.iter()) {
-            color[(f.y - y0) as usize * row + f.x as usize] = *c;
+            out[f.x as usize] = *c;
         }
     }
 }

@@ -255,19 +255,34 @@ impl<V: Varying> SetupTriangle<V> {
         let (mut r1, sx1, sy1, b1) = edge(2, 0);
         let (mut r2, sx2, sy2, b2) = edge(0, 1);
         let inv = self.inv_area;
-        // Half-open ranges: an inclusive range's iterator keeps an `exhausted` flag, one more
-        // compare and branch per pixel in the hottest loop.
+        let last = (self.max_x - self.min_x) as i64;
         for py in y_from..y_to + 1 {
-            let (mut e0, mut e1, mut e2) = (r0, r1, r2);
-            for px in self.min_x..self.max_x + 1 {
-                if (e0 | e1 | e2) >= 0 {
+            // The row's covered run, solved from the three edge functions (each linear in x)
+            // instead of testing every pixel of the bounding box: thin triangles, the norm
+            // towards a horizon, cover a third of their box or less. Exact integer bounds, so
+            // the pixels are the ones the per-pixel test `e0, e1, e2 >= 0` gives.
+            let (mut lo, mut hi) = (0i64, last);
+            for (r, s) in [(r0, sx0), (r1, sx1), (r2, sx2)] {
+                match s.cmp(&0) {
+                    std::cmp::Ordering::Greater if r < 0 => lo = lo.max((-r + s - 1) / s),
+                    std::cmp::Ordering::Less if r < 0 => hi = -1,
+                    std::cmp::Ordering::Less => hi = hi.min(r / -s),
+                    std::cmp::Ordering::Equal if r < 0 => hi = -1,
+                    _ => {}
+                }
+            }
+            if lo <= hi {
+                let (mut e0, mut e1, mut e2) = (r0 + sx0 * lo, r1 + sx1 * lo, r2 + sx2 * lo);
+                // Half-open ranges: an inclusive range's iterator keeps an `exhausted` flag, one
+                // more compare and branch per pixel in the hottest loop.
+                for px in self.min_x + lo as u32..self.min_x + hi as u32 + 1 {
                     // Undo the bias before weighting; it only decides ties.
                     let linear = [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
                     visit(Coverage { x: px, y: py, linear });
+                    e0 += sx0;
+                    e1 += sx1;
+                    e2 += sx2;
                 }
-                e0 += sx0;
-                e1 += sx1;
-                e2 += sx2;
             }
             r0 += sy0;
             r1 += sy1;

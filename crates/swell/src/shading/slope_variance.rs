@@ -23,8 +23,10 @@ const TABLE: usize = 64;
 /// The slope variance of a surface's waves shorter than a cut-off, looked up in constant time.
 ///
 /// Built once from a model's components (wavenumber rad/m, slope variance); `above(k)` is the sum
-/// over the components with wavenumber above `k`, interpolated in log k between 64 log-spaced
-/// cut-offs from half the longest wave's k to twice the shortest's.
+/// over the components of their unresolved share at the cut (all of a wave an octave shorter than
+/// the cut, none of one an octave longer, a smooth blend between: [`unresolved_share`]),
+/// interpolated in log k between 64 log-spaced cut-offs from half the longest wave's k to twice
+/// the shortest's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct UnresolvedSlopes {
     log_k0: f32,
@@ -59,7 +61,7 @@ impl UnresolvedSlopes {
         for (i, t) in table.iter_mut().enumerate() {
             let cut = (l0 + step * i as f64).exp();
             // Summed in f64 and in a fixed order: the table is the same on every run.
-            *t = valid.iter().filter(|c| c.0 > cut).map(|c| c.1).sum::<f64>() as f32;
+            *t = valid.iter().map(|c| c.1 * unresolved_share(c.0, cut)).sum::<f64>() as f32;
         }
         let total = valid.iter().map(|c| c.1).sum::<f64>() as f32;
         Self { log_k0: l0 as f32, inv_step: (1.0 / step) as f32, table, total }
@@ -70,7 +72,8 @@ impl UnresolvedSlopes {
         self.total
     }
 
-    /// Slope variance (both axes summed) of the waves with wavenumber above `k_cut` rad/m.
+    /// Slope variance (both axes summed) the cut-off `k_cut` rad/m leaves unresolved: the waves
+    /// shorter than it, blended over an octave either side ([`unresolved_share`]).
     pub fn above(&self, k_cut: f32) -> f32 {
         if self.total == 0.0 {
             return 0.0;
@@ -120,6 +123,17 @@ impl UnresolvedSlopes {
             self.table[i] * (1.0 - f) + self.table[i + 1] * f
         })
     }
+}
+
+/// The share of a wave of wavenumber `k` that a cut-off at `cut` (rad/m) leaves to the shading:
+/// 0 for a wave an octave or more longer than the cut, 1 for one an octave or more shorter, and
+/// a smoothstep in `log2(k / cut)` between. A pixel's box filter weakens a wave gradually as it
+/// shortens towards the footprint (its response is a sinc), and a hard cut made each wave's tilt
+/// leave the geometric normals at one distance: with a few analytic waves (the `sea` preset's six
+/// Gerstner waves) that drew a line across the sea where the longest one went.
+fn unresolved_share(k: f64, cut: f64) -> f64 {
+    let x = (0.5 * ((k / cut).log2() + 1.0)).clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
 }
 
 /// Mean Fresnel reflectance over slopes of total variance `variance` (both axes; isotropic, so
@@ -198,8 +212,13 @@ mod tests {
         let s = UnresolvedSlopes::from_components(&[(0.1, 0.001), (1.0, 0.01), (10.0, 0.02)]);
         assert!((s.total() - 0.031).abs() < 1e-7);
         assert!((s.above(0.01) - 0.031).abs() < 1e-6);
-        assert!((s.above(0.5) - 0.03).abs() < 1e-6, "{}", s.above(0.5));
-        assert!((s.above(5.0) - 0.02).abs() < 1e-6, "{}", s.above(5.0));
+        // A wave an octave or more shorter than the cut is all unresolved, one an octave or more
+        // longer not at all (to the table's interpolation, 1e-6 two octaves away)...
+        assert!((s.above(0.25) - 0.03).abs() < 1e-6, "{}", s.above(0.25));
+        assert!((s.above(2.5) - 0.02).abs() < 1e-6, "{}", s.above(2.5));
+        // ...and one at the cut half: no wave leaves the geometry at a single distance.
+        assert!((s.above(1.0) - 0.025).abs() < 2e-4, "{}", s.above(1.0));
+        assert!(s.above(0.8) > 0.025 && s.above(1.25) < 0.025);
         assert_eq!(s.above(100.0), 0.0);
         // Monotone in the cut (to within the fast logarithm's 1e-6 in the table index).
         let mut last = f32::INFINITY;
