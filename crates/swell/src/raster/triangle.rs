@@ -13,6 +13,10 @@ pub const SUBPIXEL_BITS: u32 = 8;
 const ONE: i32 = 1 << SUBPIXEL_BITS;
 const HALF: i32 = ONE / 2;
 
+/// Boxes at least this many pixels wide (less one) have each row's covered run solved for
+/// ([`SetupTriangle::scan`]); narrower ones test every pixel.
+const SPAN_MIN_WIDTH: i64 = 8;
+
 /// A triangle ready to scan: fixed-point vertices, depth, 1/w and varyings.
 #[derive(Clone, Copy, Debug)]
 pub struct SetupTriangle<V> {
@@ -256,11 +260,34 @@ impl<V: Varying> SetupTriangle<V> {
         let (mut r2, sx2, sy2, b2) = edge(0, 1);
         let inv = self.inv_area;
         let last = (self.max_x - self.min_x) as i64;
+        // Undo the bias before weighting; it only decides ties.
+        let weights = |e0: i64, e1: i64, e2: i64| [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
+        // Half-open ranges below: an inclusive range's iterator keeps an `exhausted` flag, one
+        // more compare and branch per pixel in the hottest loops.
+        if last < SPAN_MIN_WIDTH {
+            // A narrow box (a dense mesh's triangles cover a pixel or two): testing its few pixels
+            // costs less than solving for the run, which takes up to three divisions per row.
+            for py in y_from..y_to + 1 {
+                let (mut e0, mut e1, mut e2) = (r0, r1, r2);
+                for px in self.min_x..self.max_x + 1 {
+                    if (e0 | e1 | e2) >= 0 {
+                        visit(Coverage { x: px, y: py, linear: weights(e0, e1, e2) });
+                    }
+                    e0 += sx0;
+                    e1 += sx1;
+                    e2 += sx2;
+                }
+                r0 += sy0;
+                r1 += sy1;
+                r2 += sy2;
+            }
+            return;
+        }
         for py in y_from..y_to + 1 {
             // The row's covered run, solved from the three edge functions (each linear in x)
-            // instead of testing every pixel of the bounding box: thin triangles, the norm
-            // towards a horizon, cover a third of their box or less. Exact integer bounds, so
-            // the pixels are the ones the per-pixel test `e0, e1, e2 >= 0` gives.
+            // instead of testing every pixel of the box: thin triangles, the norm towards a
+            // horizon, cover a third of their box or less. Exact integer bounds, so the pixels
+            // are the ones the per-pixel test `e0, e1, e2 >= 0` gives.
             let (mut lo, mut hi) = (0i64, last);
             for (r, s) in [(r0, sx0), (r1, sx1), (r2, sx2)] {
                 match s.cmp(&0) {
@@ -273,12 +300,8 @@ impl<V: Varying> SetupTriangle<V> {
             }
             if lo <= hi {
                 let (mut e0, mut e1, mut e2) = (r0 + sx0 * lo, r1 + sx1 * lo, r2 + sx2 * lo);
-                // Half-open ranges: an inclusive range's iterator keeps an `exhausted` flag, one
-                // more compare and branch per pixel in the hottest loop.
                 for px in self.min_x + lo as u32..self.min_x + hi as u32 + 1 {
-                    // Undo the bias before weighting; it only decides ties.
-                    let linear = [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
-                    visit(Coverage { x: px, y: py, linear });
+                    visit(Coverage { x: px, y: py, linear: weights(e0, e1, e2) });
                     e0 += sx0;
                     e1 += sx1;
                     e2 += sx2;
