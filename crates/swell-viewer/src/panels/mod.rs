@@ -234,6 +234,7 @@ mod tests {
         let mut t = terrain::switch_generator(None, Some("hills")).unwrap().unwrap();
         t.size = Some(65);
         t.extent = Some(swell::scene::DEFAULT_TERRAIN_EXTENT);
+        t.far_land = Some(swell::terrain::FarLandParams::default());
         base.terrain = Some(t);
         let depth = "dispersion = { type = 'finite-depth', depth = 12.0 }\n";
         let listed = "waves = [{ amplitude = 0.2, wavelength = 20.0, direction = [1.0, 0.0], phase = 0.5 }]\n";

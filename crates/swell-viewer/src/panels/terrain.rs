@@ -12,6 +12,7 @@ use eframe::egui::{self, TextEdit, Ui};
 use swell::math::Transform;
 use swell::scene::TerrainMaterial;
 use swell::scene::{HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, TERRAIN_GENERATORS};
+use swell::terrain::FarLandParams;
 use swell::{Error, Result};
 
 use super::files::{FileMessage, FileRequest};
@@ -93,6 +94,7 @@ pub fn switch_generator(terrain: Option<&TerrainSpec>, name: Option<&str>) -> Re
             extent: None,
             transform: Transform::IDENTITY,
             material: TerrainMaterial::default(),
+            far_land: None,
             generator,
         },
     };
@@ -124,17 +126,20 @@ pub fn regenerate(spec: &mut TerrainSpec) -> bool {
     }
 }
 
-/// The terrain read from heightmap `path` (its sidecar gives scale, offset and extent); placement
-/// and look are kept. The file is read when the draft is applied, so a bad file is refused there.
+/// The terrain read from heightmap `path` (its sidecar gives scale, offset and extent); placement,
+/// look and far land are kept. The file is read when the draft is applied, so a bad file is refused
+/// there.
 pub fn use_heightmap(spec: Option<&TerrainSpec>, path: PathBuf) -> TerrainSpec {
     let (transform, material) =
         spec.map_or((Transform::IDENTITY, TerrainMaterial::default()), |s| (s.transform, s.material));
+    // The far land is part of the place too: kept.
     TerrainSpec {
         size: None,
         extent: None,
         transform,
         material,
         generator: TerrainGenerator::Heightmap(HeightmapSpec { path, height_scale: None, height_offset: None }),
+        far_land: spec.and_then(|s| s.far_land.clone()),
     }
 }
 
@@ -161,6 +166,26 @@ pub fn show_material(ui: &mut Ui, m: &mut TerrainMaterial) -> bool {
         "terrain.material",
         &["shading", "sand", "grass", "rock", "snow", "sand_height", "snow_height", "rock_slope_deg", "transition"],
     );
+    changed
+}
+
+/// Shows the `[terrain.far_land]` switch and, when on, its keys; returns whether it changed.
+pub fn show_far_land(ui: &mut Ui, far: &mut Option<FarLandParams>) -> bool {
+    let mut changed = false;
+    let mut on = far.is_some();
+    if ui.checkbox(&mut on, "Land to the horizon (far land)").changed() {
+        *far = on.then(FarLandParams::default);
+        changed = true;
+    }
+    if let Some(p) = far {
+        fields::grid("terrain-far-land").show(ui, |ui| {
+            changed |= fields::number(ui, "reach", &mut p.reach, 10.0, " m");
+            changed |= fields::number(ui, "relief", &mut p.relief, 0.5, " m");
+            changed |= fields::number(ui, "feature size", &mut p.feature_size, 5.0, " m");
+            changed |= fields::seed(ui, "seed", &mut p.seed);
+        });
+        key_paths::edits("terrain.far_land", &["reach", "relief", "feature_size", "seed"]);
+    }
     changed
 }
 
@@ -303,6 +328,7 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
     key_paths::edits("terrain", &["extent"]);
     ui.label("Material");
     changed |= show_material(ui, &mut t.material);
+    changed |= show_far_land(ui, &mut t.far_land);
     ui.label("Transform");
     fields::grid("terrain-transform").show(ui, |ui| {
         changed |= fields::vec3(ui, "translate (m)", &mut t.transform.translate, 0.1);

@@ -1,6 +1,7 @@
 //! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer, every
 //! lit one through the one shaded-draw path ([`shaded_draw`]):
-//! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`reflection_pass`] draws it
+//! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`far_land_pass`] the land
+//! beyond it to the horizon, [`reflection_pass`] draws the terrain
 //! mirrored into its own image for the water to reflect, [`water_pass`] draws the water surface,
 //! [`sky_pass`] fills what is left with the sky, [`overlay_pass`] draws the wireframe and normals
 //! when asked for. Unbounded water (issue 17) is drawn from the camera-following rings of
@@ -8,6 +9,7 @@
 //! edge to the horizon before the sky fills the rest.
 
 mod far_field_pass;
+mod far_land_pass;
 mod mesh_pass;
 // issue 10: the OBJ comparison mode's camera/light files, read in the library so they can be fuzzed.
 mod mesh_view_json;
@@ -35,6 +37,8 @@ pub struct Renderer {
     supersampled: Option<Framebuffer>,
     /// The terrain's vertex buffers and colours, which its reflection draws again.
     terrain_draw: shaded_draw::ShadedDraw,
+    /// The vertex buffers of the land beyond the terrain's field.
+    far_land_draw: shaded_draw::ShadedDraw,
     /// The water's vertex buffers.
     water_draw: shaded_draw::ShadedDraw,
     /// The mirrored terrain the water reflects.
@@ -90,9 +94,14 @@ impl Renderer {
         let mut reflection = None;
         if let Some(terrain) = &world.terrain {
             terrain_pass::draw(fb, &frame, terrain, &mut self.terrain_draw);
-            if world.water.is_some() {
-                reflection =
-                    reflection_pass::draw(&mut self.reflection_scratch, &frame, terrain, &mut self.terrain_draw);
+            let sea = world.water.as_ref().is_some_and(|w| w.extent == WaterExtent::Unbounded);
+            far_land_pass::draw(fb, &frame, terrain, &mut self.far_land_draw, sea);
+            if let Some(water) = &world.water {
+                let water_box = (!sea)
+                    .then(|| reflection_pass::water_screen_box(&water.mesh.positions, frame.clip_from_world))
+                    .flatten();
+                let draw = &mut self.terrain_draw;
+                reflection = reflection_pass::draw(&mut self.reflection_scratch, &frame, terrain, draw, water_box);
             }
         }
         if let Some(water) = &world.water {

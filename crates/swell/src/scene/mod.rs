@@ -15,6 +15,7 @@ mod sky;
 mod sky_model;
 mod sky_radiance;
 mod terrain_body;
+mod terrain_far_land;
 mod terrain_material;
 mod terrain_spec;
 mod texture;
@@ -37,6 +38,7 @@ pub use sky::{Sky, SunDisc, SunProfile};
 pub use sky_model::SkyModel;
 pub use sky_radiance::{SkyRadiance, TABLE_SIDE};
 pub use terrain_body::TerrainBody;
+pub use terrain_far_land::FarLand;
 pub use terrain_material::TerrainMaterial;
 pub use terrain_spec::{
     HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,

@@ -4,6 +4,7 @@
 use glam::{Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::terrain_far_land::FarLand;
 use super::TerrainMaterial;
 use super::TerrainSpec;
 use crate::error::Result;
@@ -22,6 +23,9 @@ pub struct TerrainBody {
     pub mesh: SurfaceMesh,
     /// How it looks.
     pub material: TerrainMaterial,
+    /// The land beyond the field to the horizon, when `[terrain.far_land]` asks for it. It is
+    /// drawn, but [`Self::ground_height`] answers for the field alone (water beyond it is deep).
+    pub far_land: Option<FarLand>,
     model_from_world: Mat4,
     /// World-space ground heights for transforms that tilt the field (rotation about X or Z),
     /// where a vertical world line no longer maps to a vertical model line.
@@ -42,11 +46,13 @@ impl TerrainBody {
             *n = (normal_matrix * *n).normalize_or(Vec3::Y);
         });
         let tilted_ground = (!transform.keeps_up()).then(|| GroundMap::from_mesh(&mesh, field.cols(), field.rows()));
+        let far_land = spec.far_land.as_ref().map(|p| FarLand::new(&field, p, &transform)).transpose()?;
         Ok(Self {
             field,
             transform,
             mesh,
             material: spec.material,
+            far_land,
             model_from_world: transform.model_from_world(),
             tilted_ground,
         })
@@ -159,6 +165,7 @@ mod tests {
             transform,
             material: TerrainMaterial::default(),
             generator,
+            far_land: None,
         }
     }
 

@@ -14,7 +14,12 @@
 //! translate = [0.0, -5.0, 0.0]
 //! [terrain.material]
 //! shading = "flat"
+//! [terrain.far_land]
+//! reach = 8000.0
 //! ```
+//!
+//! `[terrain.far_land]`, when present, continues the field to the horizon
+//! ([`crate::terrain::far_land`]).
 
 use std::path::{Path, PathBuf};
 
@@ -26,8 +31,8 @@ use super::TerrainMaterial;
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
 use crate::math::Transform;
 use crate::terrain::{
-    load_heightmap, ChannelParams, DiamondSquareParams, FlatParams, GeneratorParams, HeightField, HeightmapOverrides,
-    HillsParams, NoiseTerrainParams, RandomAverageParams, SlopeParams,
+    load_heightmap, ChannelParams, DiamondSquareParams, FarLandParams, FlatParams, GeneratorParams, HeightField,
+    HeightmapOverrides, HillsParams, NoiseTerrainParams, RandomAverageParams, SlopeParams,
 };
 pub use crate::terrain::{DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE};
 
@@ -162,6 +167,9 @@ pub struct TerrainSpec {
     pub material: TerrainMaterial,
     /// Generator and its parameters.
     pub generator: TerrainGenerator,
+    /// Land beyond the field to the horizon (`[terrain.far_land]`); `None` (no such table): the
+    /// terrain ends at its field's edge.
+    pub far_land: Option<FarLandParams>,
 }
 
 /// Keys of `[terrain]` that are not the generator's.
@@ -203,12 +211,17 @@ impl TerrainSpec {
             Some(v) => deserialize_at(v, "terrain.material", source)?,
             None => TerrainMaterial::default(),
         };
+        let far_land = match table.remove("far_land") {
+            Some(v) => Some(deserialize_at(v, "terrain.far_land", source)?),
+            None => None,
+        };
         Ok(Self {
             size: common.size,
             extent: common.extent,
             transform,
             material,
             generator: TerrainGenerator::from_table(&generator, table, source)?,
+            far_land,
         })
     }
 
@@ -218,6 +231,9 @@ impl TerrainSpec {
         t.extend(to_table(&CommonKeys { size: self.size, extent: self.extent }));
         t.insert("transform".into(), toml::Value::Table(to_table(&self.transform)));
         t.insert("material".into(), toml::Value::Table(to_table(&self.material)));
+        if let Some(far) = &self.far_land {
+            t.insert("far_land".into(), toml::Value::Table(to_table(far)));
+        }
         t
     }
 
@@ -233,6 +249,9 @@ impl TerrainSpec {
         }
         self.transform.validate("terrain.transform")?;
         self.material.validate("terrain.material")?;
+        if let Some(far) = &self.far_land {
+            far.validate("terrain.far_land")?;
+        }
         self.generator.validate()
     }
 
@@ -280,7 +299,8 @@ mod tests {
     fn a_section_round_trips_and_builds() {
         let t = parse(
             "generator = 'diamond-square'\nsize = 33\nextent = [50.0, 40.0]\nroughness = 0.6\nseed = 9\n\
-             [transform]\ntranslate = [1.0, -2.0, 0.0]\nrotate_deg = [0.0, 30.0, 0.0]\n[material]\nshading = 'flat'\n",
+             [transform]\ntranslate = [1.0, -2.0, 0.0]\nrotate_deg = [0.0, 30.0, 0.0]\n[material]\nshading = 'flat'\n\
+             [far_land]\nreach = 900.0\nrelief = 12.0\n",
         )
         .unwrap();
         assert_eq!(TerrainSpec::from_table(t.to_table(), "again").unwrap(), t);
@@ -309,6 +329,14 @@ mod tests {
         assert!(e.starts_with("terrain.transform.scale[1] = -1"), "{e}");
         let e = parse("generator = 'flat'\n[material]\nrock_slope_deg = 95.0\n").unwrap_err().to_string();
         assert!(e.starts_with("terrain.material.rock_slope_deg = 95"), "{e}");
+        let e = parse("generator = 'flat'\n[far_land]\nreach = 2e6\n").unwrap_err().to_string();
+        assert_eq!(e, "terrain.far_land.reach = 2000000 is outside [1, 1000000]");
+        let e = parse("generator = 'flat'\n[far_land]\nrelief = -1.0\n").unwrap_err().to_string();
+        assert_eq!(e, "terrain.far_land.relief = -1 is outside [0, 100000]");
+        let e = parse("generator = 'flat'\n[far_land]\nfeature_size = 0.5\n").unwrap_err().to_string();
+        assert_eq!(e, "terrain.far_land.feature_size = 0.5 is outside [1, 1000000]");
+        let e = parse("generator = 'flat'\n[far_land]\nheight = 3.0\n").unwrap_err().to_string();
+        assert!(e.contains("terrain.far_land") && e.contains("unknown field `height`"), "{e}");
     }
 
     #[test]

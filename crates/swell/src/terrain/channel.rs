@@ -1,7 +1,10 @@
 //! A river channel carved between two banks (paper 004: a river between two bank lines that
 //! follow sines). The banks meander as `meander_amplitude * sin(2 pi s / meander_wavelength)`
 //! along the flow; across it the ground is the bed inside the channel and rises smoothly over
-//! `bank_width` to the bank height outside.
+//! `bank_width` to the bank height outside. Beyond the banks the ground may go on rising, by
+//! `valley_height` over `valley_width` on each side, so the river runs in a valley (issue 18): land
+//! higher on both sides, as a river that cut its bed has (a smoothstep profile, the same as the
+//! banks', so the valley floor, its sides and the land above join without a crease).
 
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -29,6 +32,11 @@ pub struct ChannelParams {
     pub meander_amplitude: f32,
     /// Distance (m) along the river of one full swing, > 0. Default 120.
     pub meander_wavelength: f32,
+    /// Horizontal run (m) of each valley side, from the top of the bank to the valley's rim,
+    /// in [0, 1e5]. Default 0 (no valley: the land stays at the bank height).
+    pub valley_width: f32,
+    /// Height (m) of the valley's rim above the bank height, in [0, 1e5]. Default 0.
+    pub valley_height: f32,
 }
 
 impl Default for ChannelParams {
@@ -41,6 +49,8 @@ impl Default for ChannelParams {
             direction: Vec2::X,
             meander_amplitude: 0.0,
             meander_wavelength: 120.0,
+            valley_width: 0.0,
+            valley_height: 0.0,
         }
     }
 }
@@ -57,7 +67,9 @@ impl ChannelParams {
             return Err(Error::invalid(format!("{key}.direction"), "[0, 0] has no direction; give a non-zero [x, z]"));
         }
         check_non_negative(&format!("{key}.meander_amplitude"), self.meander_amplitude)?;
-        check_positive(&format!("{key}.meander_wavelength"), self.meander_wavelength)
+        check_positive(&format!("{key}.meander_wavelength"), self.meander_wavelength)?;
+        check_range(&format!("{key}.valley_width"), self.valley_width, 0.0, MAX_AMPLITUDE)?;
+        check_range(&format!("{key}.valley_height"), self.valley_height, 0.0, MAX_AMPLITUDE)
     }
 
     /// Ground height (m) at model (x, z).
@@ -70,8 +82,18 @@ impl ChannelParams {
         let outside = (p.dot(across) - centre).abs() - 0.5 * self.width;
         let t = (outside / self.bank_width).clamp(0.0, 1.0);
         // Smoothstep: banks leave the bed and meet the land without a crease.
-        self.bed_height + (self.bank_height - self.bed_height) * t * t * (3.0 - 2.0 * t)
+        let bank = self.bed_height + (self.bank_height - self.bed_height) * smoothstep(t);
+        if self.valley_width <= 0.0 || self.valley_height <= 0.0 {
+            return bank;
+        }
+        let v = ((outside - self.bank_width) / self.valley_width).clamp(0.0, 1.0);
+        bank + self.valley_height * smoothstep(v)
     }
+}
+
+/// `3t² − 2t³`: 0 and 1 at t = 0 and 1 with zero slope at both ends.
+fn smoothstep(t: f32) -> f32 {
+    t * t * (3.0 - 2.0 * t)
 }
 
 /// A `size` x `size` channel field spanning `extent` metres.
@@ -107,5 +129,28 @@ mod tests {
         assert!((mid - 0.25).abs() < 1e-5, "{mid}");
         let f = channel(65, Vec2::splat(160.0), &p).unwrap();
         assert_eq!(f.min_max(), (-1.5, 2.0));
+    }
+
+    #[test]
+    fn a_valley_rises_on_both_sides_beyond_the_banks() {
+        let p = ChannelParams { valley_width: 30.0, valley_height: 12.0, ..Default::default() };
+        // Flow along +X: the bed at |z| <= 10, banks to |z| = 16, the valley side to |z| = 46.
+        for z in [-1.0f32, 1.0] {
+            assert_eq!(p.height_at(5.0, 5.0 * z), -1.5);
+            assert_eq!(p.height_at(5.0, 16.0 * z), 2.0);
+            assert!((p.height_at(5.0, 31.0 * z) - 8.0).abs() < 1e-4);
+            assert_eq!(p.height_at(5.0, 46.0 * z), 14.0);
+            assert_eq!(p.height_at(5.0, 90.0 * z), 14.0);
+        }
+        let mut last = f32::MIN;
+        for k in 0..100 {
+            let h = p.height_at(0.0, k as f32);
+            assert!(h >= last, "the valley side falls at z = {k}");
+            last = h;
+        }
+        let e = ChannelParams { valley_height: -1.0, ..Default::default() }.validate("terrain").unwrap_err();
+        assert_eq!(e.to_string(), "terrain.valley_height = -1 is outside [0, 100000]");
+        let e = ChannelParams { valley_width: f32::INFINITY, ..Default::default() }.validate("terrain").unwrap_err();
+        assert!(e.to_string().starts_with("terrain.valley_width = inf"), "{e}");
     }
 }

@@ -1,5 +1,6 @@
 //! Terrain: height fields in metres and the generators that make them (paper 001), heightmap
-//! files, simple bottoms for pools and beaches, and river channels.
+//! files, simple bottoms for pools and beaches, river channels, and the far land that continues a
+//! field to the horizon.
 //!
 //! Every generator takes a size (vertices per side), a horizontal extent in metres and its own
 //! parameters (with `validate`), and returns a [`HeightField`] centred on the model origin. The
@@ -8,6 +9,7 @@
 mod bottom;
 mod channel;
 mod diamond_square;
+mod far_land;
 mod generator_params;
 mod height_field;
 // PNG heightmaps and their TOML sidecars: files that scenes name, so behind the `render` feature
@@ -23,6 +25,7 @@ mod smoothing;
 pub use bottom::{flat, slope, FlatParams, SlopeParams};
 pub use channel::{channel, ChannelParams};
 pub use diamond_square::{check_diamond_square_size, diamond_square, DiamondSquareParams, MAX_AMPLITUDE};
+pub use far_land::{far_land, FarLandMesh, FarLandParams, MAX_FAR_LAND_REACH, MAX_FAR_LAND_RINGS};
 pub use generator_params::{GeneratorParams, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE};
 pub use height_field::{HeightField, MAX_TERRAIN_SIZE};
 #[cfg(feature = "render")]
