@@ -207,7 +207,8 @@ mod tests {
 
     #[test]
     fn foam_and_scattering_keys_are_checked_with_their_path_value_and_range() {
-        let bad: [(&str, fn(&mut WaterMaterial)); 8] = [
+        type Spoil = fn(&mut WaterMaterial);
+        let bad: [(&str, Spoil); 8] = [
             ("water.material.foam_scale", |m| m.foam_scale = 0.0),
             ("water.material.foam_feather", |m| m.foam_feather = 1.5),
             ("water.material.foam_feather", |m| m.foam_feather = f32::NAN),
