@@ -267,6 +267,7 @@ mod tests {
                 let mut w = water_with(m, &extra);
                 w.material.bottom_depth = Some(water::DEFAULT_BOTTOM_DEPTH_M);
                 w.material.texture = Some("procedural".into());
+                w.material.foam_texture = Some("procedural".into());
                 // Left out of the file at their identity values.
                 w.surface.yaw_deg = 15.0;
                 w.surface.uniform_scale = 1.5;

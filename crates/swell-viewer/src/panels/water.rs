@@ -102,6 +102,12 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
         );
         changed |= fields::color(ui, "bottom colour", &mut m.bottom_color);
         changed |= fields::color(ui, "foam colour", &mut m.foam_color);
+        changed |= fields::optional_text(ui, "foam texture (procedural or a file)", &mut m.foam_texture, "procedural");
+        changed |= fields::number(ui, "foam scale", &mut m.foam_scale, 0.05, " m");
+        changed |= fields::number(ui, "foam feather", &mut m.foam_feather, 0.005, "");
+        changed |= fields::color(ui, "scatter colour", &mut m.scatter_color);
+        changed |= fields::number(ui, "scatter strength", &mut m.scatter_strength, 0.01, "");
+        changed |= fields::number(ui, "scatter height", &mut m.scatter_height, 0.05, " m");
         changed |= fields::optional_text(ui, "texture (procedural or a file)", &mut m.texture, "procedural");
         changed |= fields::number(ui, "texture scale", &mut m.texture_scale, 0.05, " m");
         changed |= fields::number(ui, "texture mix", &mut m.texture_mix, 0.01, "");
@@ -119,6 +125,12 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
             "bottom_depth",
             "bottom_color",
             "foam_color",
+            "foam_texture",
+            "foam_scale",
+            "foam_feather",
+            "scatter_color",
+            "scatter_strength",
+            "scatter_height",
             "texture",
             "texture_scale",
             "texture_mix",

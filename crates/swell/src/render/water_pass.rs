@@ -114,7 +114,9 @@ pub fn draw(
         (None, Some(t)) => t,
         (None, None) => &NoBottom,
     };
-    let look = WaterLook::new(material, seabed, water.texture.as_ref(), frame.env.time).with_reflection(reflection);
+    let look = WaterLook::new(material, seabed, water.texture.as_ref(), frame.env.time)
+        .with_reflection(reflection)
+        .with_foam(Some(&water.foam_pattern));
     let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading), filter };
     let clip_from_world = frame.clip_from_world;
     draw.draw(fb, mesh, &|p| clip_from_world * Vec4::from((p, 1.0)), material.shading, &shader);

@@ -2,6 +2,7 @@
 //! format that stores it, the built-in presets, and the runnable [`World`] built from it.
 
 mod camera;
+mod foam_pattern;
 mod light;
 mod memory_estimate;
 mod preetham;
@@ -27,6 +28,7 @@ mod water_spec;
 mod world;
 
 pub use camera::Camera;
+pub use foam_pattern::{FoamPattern, FOAM_PATTERN_SIDE};
 pub use light::{Incident, Light};
 pub use preetham::{sun_transmittance, zenith_chromaticity, zenith_luminance, Perez, PreethamSky, TURBIDITY_RANGE};
 pub use presets::{preset, Preset, PRESETS};

@@ -3,7 +3,7 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::{Shading, Texture, WaterPlacement};
+use super::{FoamPattern, Shading, Texture, WaterPlacement};
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
 use crate::water::SurfaceFlow;
 
@@ -41,6 +41,26 @@ pub struct WaterMaterial {
     pub bottom_color: Vec3,
     /// Linear RGB albedo of foam, components in [0, 1]. Default [0.85, 0.88, 0.9].
     pub foam_color: Vec3,
+    /// Structure of foam: `"procedural"` (bubble rafts and their borders, [`FoamPattern`]) or an
+    /// image file path (PNG or JPEG, relative to the scene file; only the order of its grey
+    /// levels matters); absent means `"procedural"`. The wave model's foam coverage reveals it
+    /// from its highest values down, so the foam shown has the model's coverage.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub foam_texture: Option<String>,
+    /// Size of one foam-pattern tile on the water, metres, in [0.1, 1000]. Default 6.
+    pub foam_scale: f32,
+    /// Width of the soft edge of foam cells, as a fraction of the pattern's range, in
+    /// [0.01, 1]: small gives crisp lace, 1 a soft blend. Default 0.15.
+    pub foam_feather: f32,
+    /// Linear RGB colour of light scattered through thin, backlit crests (subsurface scattering),
+    /// components in [0, 1]. Default [0.05, 0.32, 0.26] (the green of sunlit crests).
+    pub scatter_color: Vec3,
+    /// Strength of that scattering, in [0, 10]; 0 turns it off. Default 4.
+    pub scatter_strength: f32,
+    /// Height over which crests thicken into the scattering, metres, in [0.01, 100]: the
+    /// scattering grows linearly from nothing at `y = −scatter_height` to 1 at rest and 2 at
+    /// `y = scatter_height` (capped at 3). Default 2.5.
+    pub scatter_height: f32,
     /// Texture of the water colour: `"procedural"` (a tiling water pattern), `"streaks"` (a
     /// tiling pattern of streaks along +Z, flowing water) or an image file path (PNG or JPEG,
     /// sRGB, relative to the scene file); absent means none, except on a river, which takes
@@ -68,6 +88,12 @@ impl Default for WaterMaterial {
             bottom_depth: None,
             bottom_color: Vec3::new(0.55, 0.47, 0.33),
             foam_color: Vec3::new(0.85, 0.88, 0.9),
+            foam_texture: None,
+            foam_scale: 6.0,
+            foam_feather: 0.15,
+            scatter_color: Vec3::new(0.05, 0.32, 0.26),
+            scatter_strength: 4.0,
+            scatter_height: 2.5,
             texture: None,
             texture_scale: 8.0,
             texture_mix: 1.0,
@@ -88,6 +114,11 @@ impl WaterMaterial {
         unit_rgb("color", self.color)?;
         unit_rgb("bottom_color", self.bottom_color)?;
         unit_rgb("foam_color", self.foam_color)?;
+        unit_rgb("scatter_color", self.scatter_color)?;
+        check_range(&format!("{key}.foam_scale"), self.foam_scale, 0.1, 1000.0)?;
+        check_range(&format!("{key}.foam_feather"), self.foam_feather, 0.01, 1.0)?;
+        check_range(&format!("{key}.scatter_strength"), self.scatter_strength, 0.0, 10.0)?;
+        check_range(&format!("{key}.scatter_height"), self.scatter_height, 0.01, 100.0)?;
         check_range(&format!("{key}.refractive_index"), self.refractive_index, 1.0, 3.0)?;
         check_range(&format!("{key}.specular"), self.specular, 0.0, 100.0)?;
         check_range(&format!("{key}.shininess"), self.shininess, 1.0, 100_000.0)?;
@@ -105,6 +136,14 @@ impl WaterMaterial {
                 return Err(Error::invalid(format!("{key}.texture"), "is empty; give \"procedural\" or an image path"));
             }
         }
+        if let Some(t) = &self.foam_texture {
+            if t.trim().is_empty() {
+                return Err(Error::invalid(
+                    format!("{key}.foam_texture"),
+                    "is empty; give \"procedural\" or an image path",
+                ));
+            }
+        }
         Ok(())
     }
 
@@ -113,6 +152,11 @@ impl WaterMaterial {
     pub fn resolve_paths(&mut self, dir: &std::path::Path) {
         if let Some(t) = &mut self.texture {
             if !PROCEDURAL_TEXTURES.contains(&t.as_str()) && std::path::Path::new(t).is_relative() {
+                *t = dir.join(&*t).to_string_lossy().into_owned();
+            }
+        }
+        if let Some(t) = &mut self.foam_texture {
+            if t != "procedural" && std::path::Path::new(t).is_relative() {
                 *t = dir.join(&*t).to_string_lossy().into_owned();
             }
         }
@@ -148,5 +192,55 @@ impl WaterMaterial {
                 .map(Some)
                 .map_err(|e| Error::invalid("water.material.texture", e.to_string())),
         }
+    }
+
+    /// Loads (or generates) the foam pattern the material names (`foam_texture`); a file that
+    /// cannot be read is an error naming `water.material.foam_texture` and the file.
+    pub fn load_foam_pattern(&self) -> Result<FoamPattern> {
+        FoamPattern::load(self.foam_texture.as_deref().unwrap_or("procedural"), "water.material.foam_texture")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn foam_and_scattering_keys_are_checked_with_their_path_value_and_range() {
+        type Spoil = fn(&mut WaterMaterial);
+        let bad: [(&str, Spoil); 8] = [
+            ("water.material.foam_scale", |m| m.foam_scale = 0.0),
+            ("water.material.foam_feather", |m| m.foam_feather = 1.5),
+            ("water.material.foam_feather", |m| m.foam_feather = f32::NAN),
+            ("water.material.scatter_strength", |m| m.scatter_strength = -1.0),
+            ("water.material.scatter_height", |m| m.scatter_height = 0.0),
+            ("water.material.scatter_color[1]", |m| m.scatter_color.y = 2.0),
+            ("water.material.foam_texture", |m| m.foam_texture = Some(" ".into())),
+            ("water.material.scatter_strength", |m| m.scatter_strength = 11.0),
+        ];
+        for (key, spoil) in bad {
+            let mut m = WaterMaterial::default();
+            spoil(&mut m);
+            let e = m.validate("water.material").unwrap_err().to_string();
+            assert!(e.contains(key), "{key}: {e}");
+        }
+        let e = WaterMaterial { foam_feather: 1.5, ..Default::default() }.validate("water.material").unwrap_err();
+        let e = e.to_string();
+        assert!(e.contains("1.5") && e.contains("0.01") && e.contains('1'), "value and range: {e}");
+        WaterMaterial::default().validate("water.material").unwrap();
+    }
+
+    #[test]
+    fn a_foam_texture_that_cannot_be_read_names_its_key_and_file() {
+        let m = WaterMaterial { foam_texture: Some("/nonexistent/foam.png".into()), ..Default::default() };
+        let e = m.load_foam_pattern().unwrap_err().to_string();
+        assert!(e.contains("water.material.foam_texture") && e.contains("/nonexistent/foam.png"), "{e}");
+        // Relative to the scene file, as the colour texture is; "procedural" stays a name.
+        let mut m = WaterMaterial { foam_texture: Some("foam.png".into()), ..Default::default() };
+        m.resolve_paths(std::path::Path::new("/scenes"));
+        assert_eq!(m.foam_texture.as_deref(), Some("/scenes/foam.png"));
+        let mut m = WaterMaterial { foam_texture: Some("procedural".into()), ..Default::default() };
+        m.resolve_paths(std::path::Path::new("/scenes"));
+        assert_eq!(m.foam_texture.as_deref(), Some("procedural"));
     }
 }

@@ -1,6 +1,6 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
-use super::Texture;
+use super::{FoamPattern, Texture};
 use super::{LodSettings, Scene, TerrainBody, WaterExtent, WaterMaterial, WaterPlacement};
 use crate::error::Result;
 use crate::mesh::SurfaceMesh;
@@ -21,6 +21,8 @@ pub struct WaterBody {
     pub material: WaterMaterial,
     /// The material's texture, loaded or generated, if it names one.
     pub texture: Option<Texture>,
+    /// The structure of its foam (`foam_texture`), loaded or generated.
+    pub foam_pattern: FoamPattern,
     /// How far the water reaches ([`crate::scene::Scene::water_extent`]): an unbounded sea is
     /// drawn by the renderer from a camera-following mesh ([`crate::mesh::Clipmap`]) and a far
     /// field, the patch `mesh` staying what bakes and exports sample.
@@ -74,6 +76,7 @@ impl World {
                 // A flowing model (the river) slides a texture with its flow.
                 let material = spec.material.with_flow(spec.model.params().surface_flow(), &placement);
                 let texture = material.load_texture()?;
+                let foam_pattern = material.load_foam_pattern()?;
                 let mut components = Vec::new();
                 model.slope_components(&mut components);
                 // A uniform scale keeps slopes and divides wavenumbers: the table is in world units.
@@ -82,7 +85,17 @@ impl World {
                 }
                 let slopes = UnresolvedSlopes::from_components(&components);
                 let extent = scene.water_extent().expect("the scene has water");
-                Some(WaterBody { model, mesh, placement, material, texture, extent, lod: spec.surface.lod, slopes })
+                Some(WaterBody {
+                    model,
+                    mesh,
+                    placement,
+                    material,
+                    texture,
+                    foam_pattern,
+                    extent,
+                    lod: spec.surface.lod,
+                    slopes,
+                })
             }
             None => None,
         };

@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use super::slope_variance::{mean_fresnel_lanes, spread_normals_lanes, widened_lobe_lanes};
 use super::{fresnel_dielectric, Environment, Lobe, ReflectionMap};
 use crate::math::{fast_pow, Lanes, Vec3Lanes};
-use crate::scene::{Light, TerrainBody, Texture, WaterMaterial};
+use crate::scene::{FoamPattern, Light, TerrainBody, Texture, WaterMaterial};
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
 ///
@@ -66,6 +66,8 @@ pub struct WaterLook<'a> {
     pub texture_offset: Vec2,
     /// The terrain above the water, mirrored ([`ReflectionMap`]); `None` reflects only the sky.
     pub reflection: Option<&'a ReflectionMap<'a>>,
+    /// The structure foam shows ([`FoamPattern`]); `None` blends towards foam by its coverage.
+    pub foam: Option<&'a FoamPattern>,
 }
 
 impl<'a> WaterLook<'a> {
@@ -75,12 +77,17 @@ impl<'a> WaterLook<'a> {
         // Reduce modulo one tile in f64 so that hours of flow keep full f32 precision.
         let tiles = |v: f32| (-(v as f64) * t / material.texture_scale as f64).rem_euclid(1.0) as f32;
         let texture_offset = Vec2::new(tiles(material.flow_velocity.x), tiles(material.flow_velocity.y));
-        Self { material, seabed, texture, texture_offset, reflection: None }
+        Self { material, seabed, texture, texture_offset, reflection: None, foam: None }
     }
 
     /// The same look, also reflecting the terrain of `reflection`.
     pub fn with_reflection(self, reflection: Option<&'a ReflectionMap<'a>>) -> Self {
         Self { reflection, ..self }
+    }
+
+    /// The same look, its foam structured by `pattern`.
+    pub fn with_foam(self, pattern: Option<&'a FoamPattern>) -> Self {
+        Self { foam: pattern, ..self }
     }
 
     /// The water-body colour at world (`x`, `z`): `color`, or its blend with the texture.
@@ -112,18 +119,31 @@ pub fn refract(incident: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
 /// Fixed-point steps that find where a refracted ray meets a bottom that is not flat.
 const SEABED_ITERATIONS: usize = 4;
 
+/// Most the crest factor of the subsurface scattering may be (`1 + y / scatter_height`, three at
+/// twice the height): a tall spike does not glow without bound.
+const MAX_CREST_FACTOR: f32 = 3.0;
+
+/// Distance, in foam-pattern tiles, beyond which the foam's cells start to give way to their mean
+/// (the coverage): farther, a cell's border is thinner than a pixel and would shimmer.
+const FOAM_DETAIL_START_TILES: f32 = 15.0;
+/// Distance, in tiles, over which that hand-over completes.
+const FOAM_DETAIL_FADE_TILES: f32 = 30.0;
+
 /// Radiance leaving water point `p` (world m) with unit normal `n` towards the eye; `foam` in
 /// [0, 1] whitens it.
 ///
 /// `L = F L_r + (1 − F) L_t + specular + foam`, with F the exact Fresnel reflectance
 /// ([`fresnel_dielectric`]) and `L_r` what the mirrored view ray r sees: the terrain above the
 /// water where [`WaterLook::reflection`] has it along r, the sky elsewhere; and where the transmitted radiance
-/// `L_t = L_bottom e^(−a s) + L_body (1 − e^(−a s))` is the refracted bottom attenuated by
+/// `L_t = L_bottom e^(−a s) + L_body (1 − e^(−a s)) + L_sss` is the refracted bottom attenuated by
 /// Beer-Lambert absorption `a` (per channel, 1/m) over the underwater path s, plus light
-/// scattered by the water body (`color` lit by the lights) along it; with no bottom in sight
-/// only the body remains (deep water). The bottom is lit by the lights after their own
-/// refraction and absorption down to it. A reflected ray below the horizon would hit the water
-/// again; it is bent back to the horizon, whose colour is what such a ray would eventually see.
+/// scattered by the water body along it (`color` lit by the light that enters the water,
+/// [`light_in_water_lanes`]), plus the light scattered through thin backlit crests (`L_sss`);
+/// with no bottom in sight only the body remains (deep water). The bottom is lit by the lights
+/// after their own refraction and absorption down to it. A reflected ray below the horizon would
+/// hit the water again; it is bent back to the horizon, whose colour is what such a ray would
+/// eventually see. Foam covers the water where the wave model reports it, structured by the
+/// look's [`FoamPattern`] so that the foam shown has the reported coverage.
 pub fn shade_water(env: &Environment, look: &WaterLook, lobe: Lobe, p: Vec3, n: Vec3, foam: f32) -> Vec3 {
     shade_water_filtered(env, look, lobe, p, n, foam, 0.0)
 }
@@ -216,7 +236,7 @@ pub fn shade_water_lanes(
         }
     }
 
-    let lit = lambert_lanes(env, p, n);
+    let (lit, scatter) = light_in_water_lanes(env, m, p, n, to_eye);
     let body = match look.texture {
         Some(_) => Vec3Lanes::from_fn(|i| look.body_color(p.x.0[i], p.z.0[i])) * lit,
         None => lit * m.color,
@@ -238,6 +258,10 @@ pub fn shade_water_lanes(
         }
     }
 
+    if m.scatter_strength > 0.0 {
+        transmitted = transmitted + scatter;
+    }
+
     let mut water = sky.scale(f) + transmitted.scale(1.0 - f);
     if m.specular > 0.0 {
         let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
@@ -246,7 +270,8 @@ pub fn shade_water_lanes(
     let foam = points.foam;
     if foam.gt(0.0).any() {
         let foam_light = lambert_lanes(env, p, Vec3Lanes::splat(Vec3::Y)) * m.foam_color;
-        water = foam.gt(0.0).select3(water.lerp(foam_light, foam.min(1.0)), water);
+        let cover = foam_cover_lanes(env, look, p, foam.min(1.0));
+        water = foam.gt(0.0).select3(water.lerp(foam_light, cover), water);
     }
     if env.sky.sky().haze_distance > 0.0 {
         // Aerial perspective: distant water fades into the horizon's haze.
@@ -313,6 +338,66 @@ fn shade_water_run_lanes(env: &Environment, look: &WaterLook, lobe: Lobe, run: &
             *o = c.lane(i);
         }
     }
+}
+
+/// The light that enters the water at each lane's point with unit normal `n`, and the light its
+/// thin crests scatter towards the eye (`to_eye`, unit), both linear RGB.
+///
+/// Entering light: the ambient light plus each light's irradiance `E cos θ_l` less its Fresnel
+/// reflection (Schlick's approximation, Schlick 1994, of [`fresnel_dielectric`]): a low sun or
+/// a wave face turned from it puts less light into the water, and the body colour follows.
+///
+/// Subsurface scattering: the approximation of the Atlas talk (Tcheblokov and others, "Wakes,
+/// Explosions and Lighting: Interactive Water Simulation in Atlas", GDC 2019) as GodotOceanWaves
+/// writes it (`assets/shaders/spatial/water.gdshader`, `light()`): light crossing a crest towards
+/// the eye, `k H max(0, −l·v)^4 ((1 − n·l) / 2)^3`, strongest looking into the light (`−l·v`)
+/// through a face turned away from it (`1 − n·l`, the thin back of a crest) and growing with the
+/// crest's height H; here `H = clamp(1 + y / scatter_height, 0, 3)`, `k = scatter_strength`,
+/// tinted by `scatter_color`. Everything is per lane; the lights are few.
+#[inline(always)]
+fn light_in_water_lanes(
+    env: &Environment,
+    m: &WaterMaterial,
+    p: Vec3Lanes,
+    n: Vec3Lanes,
+    to_eye: Vec3Lanes,
+) -> (Vec3Lanes, Vec3Lanes) {
+    let r0 = fresnel_dielectric(1.0, m.refractive_index);
+    let scatters = m.scatter_strength > 0.0;
+    let crest = (1.0 + p.y * (1.0 / m.scatter_height)).max(0.0).min(MAX_CREST_FACTOR) * m.scatter_strength;
+    let mut entering = Vec3Lanes::splat(env.ambient);
+    let mut scatter = Vec3Lanes::splat(Vec3::ZERO);
+    for light in env.lights {
+        let (l, radiance) = incident_lanes(light, p);
+        let cos_l = n.dot(l);
+        let c = cos_l.max(0.0);
+        let x = 1.0 - c;
+        let x2 = x * x;
+        let transmitted = (1.0 - r0) * (1.0 - x2 * x2 * x);
+        entering = entering + radiance.scale(c * transmitted);
+        if scatters {
+            let towards = (-l.dot(to_eye)).max(0.0);
+            let towards2 = towards * towards;
+            let thin = 0.5 - 0.5 * cos_l;
+            scatter = scatter + radiance.scale(crest * towards2 * towards2 * (thin * thin * thin));
+        }
+    }
+    (entering, scatter * m.scatter_color)
+}
+
+/// How much of each lane foam covers, [0, 1], for the wave model's coverage `coverage` there:
+/// the look's [`FoamPattern`] at the point (tiles of `foam_scale`) revealed down to the coverage
+/// (its mean over a tile is the coverage), handing over to the coverage itself with distance,
+/// where the pattern's cells would be smaller than a pixel. Without a pattern, the coverage.
+#[inline(always)]
+fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, coverage: Lanes) -> Lanes {
+    let Some(pattern) = look.foam else { return coverage };
+    let m = look.material;
+    let per_tile = 1.0 / m.foam_scale;
+    let cells = pattern.alpha_lanes(p.x * per_tile, p.z * per_tile, coverage, m.foam_feather);
+    let tiles_away = (Vec3Lanes::splat(env.eye) - p).length() * per_tile;
+    let fade = ((tiles_away - FOAM_DETAIL_START_TILES) * (1.0 / FOAM_DETAIL_FADE_TILES)).max(0.0).min(1.0);
+    cells + (coverage - cells) * fade
 }
 
 /// [`fresnel_dielectric`] per lane.
@@ -507,6 +592,62 @@ mod tests {
         let water = shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 0.0);
         let foamy = shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 1.0);
         assert!(foamy.min_element() > water.max_element());
+    }
+
+    /// The glow a crest at height `y` with normal `n` gains from scattering, seen from `eye` with
+    /// the sun's light travelling along `sun_travel`.
+    fn crest_glow(eye: Vec3, sun_travel: Vec3, y: f32, n: Vec3) -> Vec3 {
+        let lights = [Light::Directional { direction: sun_travel, color: Vec3::ONE, intensity: 1.0 }];
+        let sky = Sky::default();
+        let mut env = env(&lights, &sky);
+        env.eye = eye;
+        let with = WaterMaterial { specular: 0.0, ..WaterMaterial::default() };
+        let without = WaterMaterial { scatter_strength: 0.0, ..with.clone() };
+        let p = Vec3::new(0.0, y, 0.0);
+        let shade = |m: &WaterMaterial| {
+            shade_water(&env, &WaterLook::new(m, &NoBottom, None, 0.0), Lobe::BlinnPhong, p, n.normalize(), 0.0)
+        };
+        shade(&with) - shade(&without)
+    }
+
+    #[test]
+    fn backlit_crests_glow_green_and_frontlit_ones_do_not() {
+        // The eye looks along -z towards a low sun through a crest whose face is turned to it.
+        let eye = Vec3::new(0.0, 4.0, 30.0);
+        let into_the_eye = Vec3::new(0.0, -0.1, 1.0);
+        let face = Vec3::new(0.0, 0.8, 0.6);
+        let glow = crest_glow(eye, into_the_eye, 1.5, face);
+        assert!(glow.y > 0.1, "a backlit crest glows: {glow}");
+        assert!(glow.y > glow.x && glow.y > glow.z, "in the scattering colour: {glow}");
+        // Higher crests glow more, troughs well below rest not at all.
+        assert!(crest_glow(eye, into_the_eye, 0.0, face).y < glow.y);
+        assert_eq!(crest_glow(eye, into_the_eye, -3.0, face), Vec3::ZERO);
+        // With the sun behind the eye nothing shines through.
+        assert_eq!(crest_glow(eye, Vec3::new(0.0, -0.1, -1.0), 1.5, face), Vec3::ZERO);
+    }
+
+    #[test]
+    fn the_body_colour_follows_the_light_that_enters_the_water() {
+        // Deep water seen from above under a high and a low sun: the low sun puts less light in
+        // than its cosine alone (Fresnel reflects more of it at grazing incidence).
+        let body = |elevation_deg: f32| {
+            let e = elevation_deg.to_radians();
+            let lights = [Light::Directional {
+                direction: Vec3::new(0.0, -e.sin(), -e.cos()),
+                color: Vec3::ONE,
+                intensity: 1.0,
+            }];
+            let sky = Sky { zenith: Vec3::ZERO, horizon: Vec3::ZERO, ground: Vec3::ZERO, ..Sky::default() };
+            let mut env = env(&lights, &sky);
+            env.ambient = Vec3::ZERO;
+            let material = WaterMaterial { specular: 0.0, scatter_strength: 0.0, ..WaterMaterial::default() };
+            let look = WaterLook::new(&material, &NoBottom, None, 0.0);
+            shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 0.0)
+        };
+        let (high, low) = (body(60.0), body(5.0));
+        let cosines = 5f32.to_radians().sin() / 60f32.to_radians().sin();
+        assert!(low.z < 0.8 * cosines * high.z, "{low} vs {high}");
+        assert!(low.z > 0.0);
     }
 
     #[test]
