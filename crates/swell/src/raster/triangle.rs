@@ -261,7 +261,8 @@ impl<V: Varying> SetupTriangle<V> {
         let inv = self.inv_area;
         let last = (self.max_x - self.min_x) as i64;
         // Undo the bias before weighting; it only decides ties.
-        let weights = |e0: i64, e1: i64, e2: i64| [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
+        let weights =
+            |e0: i64, e1: i64, e2: i64| [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
         // Half-open ranges below: an inclusive range's iterator keeps an `exhausted` flag, one
         // more compare and branch per pixel in the hottest loops.
         if last < SPAN_MIN_WIDTH {
