@@ -263,46 +263,19 @@ impl<V: Varying> SetupTriangle<V> {
         // Undo the bias before weighting; it only decides ties.
         let weights =
             |e0: i64, e1: i64, e2: i64| [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
-        // Half-open ranges below: an inclusive range's iterator keeps an `exhausted` flag, one
-        // more compare and branch per pixel in the hottest loops.
-        if last < SPAN_MIN_WIDTH {
-            // A narrow box (a dense mesh's triangles cover a pixel or two): testing its few pixels
-            // costs less than solving for the run, which takes up to three divisions per row.
-            for py in y_from..y_to + 1 {
-                let (mut e0, mut e1, mut e2) = (r0, r1, r2);
-                for px in self.min_x..self.max_x + 1 {
-                    if (e0 | e1 | e2) >= 0 {
-                        visit(Coverage { x: px, y: py, linear: weights(e0, e1, e2) });
-                    }
-                    e0 += sx0;
-                    e1 += sx1;
-                    e2 += sx2;
-                }
-                r0 += sy0;
-                r1 += sy1;
-                r2 += sy2;
-            }
-            return;
-        }
+        // Narrow boxes (a dense mesh's triangles cover a pixel or two) test each of their few
+        // pixels: solving for the run takes up to three divisions a row, which costs more.
+        let narrow = last < SPAN_MIN_WIDTH;
         for py in y_from..y_to + 1 {
-            // The row's covered run, solved from the three edge functions (each linear in x)
-            // instead of testing every pixel of the box: thin triangles, the norm towards a
-            // horizon, cover a third of their box or less. Exact integer bounds, so the pixels
-            // are the ones the per-pixel test `e0, e1, e2 >= 0` gives.
-            let (mut lo, mut hi) = (0i64, last);
-            for (r, s) in [(r0, sx0), (r1, sx1), (r2, sx2)] {
-                match s.cmp(&0) {
-                    std::cmp::Ordering::Greater if r < 0 => lo = lo.max((-r + s - 1) / s),
-                    std::cmp::Ordering::Less if r < 0 => hi = -1,
-                    std::cmp::Ordering::Less => hi = hi.min(r / -s),
-                    std::cmp::Ordering::Equal if r < 0 => hi = -1,
-                    _ => {}
-                }
-            }
+            let (lo, hi) = if narrow { (0, last) } else { covered_run([(r0, sx0), (r1, sx1), (r2, sx2)], last) };
             if lo <= hi {
                 let (mut e0, mut e1, mut e2) = (r0 + sx0 * lo, r1 + sx1 * lo, r2 + sx2 * lo);
+                // Half-open: an inclusive range's iterator keeps an `exhausted` flag, one more
+                // compare and branch per pixel in the hottest loop.
                 for px in self.min_x + lo as u32..self.min_x + hi as u32 + 1 {
-                    visit(Coverage { x: px, y: py, linear: weights(e0, e1, e2) });
+                    if !narrow || (e0 | e1 | e2) >= 0 {
+                        visit(Coverage { x: px, y: py, linear: weights(e0, e1, e2) });
+                    }
                     e0 += sx0;
                     e1 += sx1;
                     e2 += sx2;
@@ -313,4 +286,24 @@ impl<V: Varying> SetupTriangle<V> {
             r2 += sy2;
         }
     }
+}
+
+/// The covered run of a row, as offsets from the box's first column within `[0, last]`: edge `k`
+/// has value `r` there and grows by `s` a pixel, and a pixel is covered where all three are >= 0.
+/// Each edge is linear in x, so the run's ends follow exactly (integer division) instead of being
+/// searched for: thin triangles, the norm towards a horizon, cover a third of their box or less.
+/// `lo > hi` when the row has none.
+#[inline(always)]
+fn covered_run(edges: [(i64, i64); 3], last: i64) -> (i64, i64) {
+    let (mut lo, mut hi) = (0i64, last);
+    for (r, s) in edges {
+        match s.cmp(&0) {
+            std::cmp::Ordering::Greater if r < 0 => lo = lo.max((-r + s - 1) / s),
+            std::cmp::Ordering::Less if r < 0 => hi = -1,
+            std::cmp::Ordering::Less => hi = hi.min(r / -s),
+            std::cmp::Ordering::Equal if r < 0 => hi = -1,
+            _ => {}
+        }
+    }
+    (lo, hi)
 }
