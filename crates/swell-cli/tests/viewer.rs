@@ -87,8 +87,11 @@ fn start_xvfb(tools: &[&str]) -> Option<Xvfb> {
         if display_in_use(n) {
             continue;
         }
+        // `-noreset`: an X server resets when its last client leaves, and the readiness probe
+        // below is a client that leaves; a viewer connecting during that reset could not open
+        // the display (a CI flake, "Failed to open connection to X server").
         let child = Command::new("Xvfb")
-            .args([format!(":{n}").as_str(), "-screen", "0", SCREEN, "-nolisten", "tcp"])
+            .args([format!(":{n}").as_str(), "-screen", "0", SCREEN, "-nolisten", "tcp", "-noreset"])
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()
