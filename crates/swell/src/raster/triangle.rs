@@ -263,19 +263,34 @@ impl<V: Varying> SetupTriangle<V> {
         // Undo the bias before weighting; it only decides ties.
         let weights =
             |e0: i64, e1: i64, e2: i64| [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
-        // Narrow boxes (a dense mesh's triangles cover a pixel or two) test each of their few
-        // pixels: solving for the run takes up to three divisions a row, which costs more.
-        let narrow = last < SPAN_MIN_WIDTH;
-        for py in y_from..y_to + 1 {
-            let (lo, hi) = if narrow { (0, last) } else { covered_run([(r0, sx0), (r1, sx1), (r2, sx2)], last) };
-            if lo <= hi {
-                let (mut e0, mut e1, mut e2) = (r0 + sx0 * lo, r1 + sx1 * lo, r2 + sx2 * lo);
-                // Half-open: an inclusive range's iterator keeps an `exhausted` flag, one more
-                // compare and branch per pixel in the hottest loop.
-                for px in self.min_x + lo as u32..self.min_x + hi as u32 + 1 {
-                    if !narrow || (e0 | e1 | e2) >= 0 {
+        // Half-open ranges below: an inclusive range's iterator keeps an `exhausted` flag, one
+        // more compare and branch per pixel in the hottest loops. Two loops, not one with a
+        // per-pixel choice: one loop cost the unbounded sea's raster 13 % more (callgrind).
+        if last < SPAN_MIN_WIDTH {
+            // A narrow box (a dense mesh's triangles cover a pixel or two): testing its few pixels
+            // costs less than solving for the run, which takes up to three divisions a row.
+            for py in y_from..y_to + 1 {
+                let (mut e0, mut e1, mut e2) = (r0, r1, r2);
+                for px in self.min_x..self.max_x + 1 {
+                    if (e0 | e1 | e2) >= 0 {
                         visit(Coverage { x: px, y: py, linear: weights(e0, e1, e2) });
                     }
+                    e0 += sx0;
+                    e1 += sx1;
+                    e2 += sx2;
+                }
+                r0 += sy0;
+                r1 += sy1;
+                r2 += sy2;
+            }
+            return;
+        }
+        for py in y_from..y_to + 1 {
+            let (lo, hi) = covered_run([(r0, sx0), (r1, sx1), (r2, sx2)], last);
+            if lo <= hi {
+                let (mut e0, mut e1, mut e2) = (r0 + sx0 * lo, r1 + sx1 * lo, r2 + sx2 * lo);
+                for px in self.min_x + lo as u32..self.min_x + hi as u32 + 1 {
+                    visit(Coverage { x: px, y: py, linear: weights(e0, e1, e2) });
                     e0 += sx0;
                     e1 += sx1;
                     e2 += sx2;
