@@ -78,7 +78,12 @@ impl FoamPattern {
     /// `"procedural"` or the image file at `path`; `key` names the key that named it in errors.
     pub fn load(name: &str, key: &str) -> Result<Self> {
         match name {
-            "procedural" => Ok(Self::procedural()),
+            // The procedural tile depends on nothing: built once per process (about 50 ms), not
+            // again for every world, which the viewer rebuilds on each material edit.
+            "procedural" => {
+                static PROCEDURAL: std::sync::OnceLock<FoamPattern> = std::sync::OnceLock::new();
+                Ok(PROCEDURAL.get_or_init(Self::procedural).clone())
+            }
             path => Texture::from_file(std::path::Path::new(path))
                 .map(|t| Self::from_texture(&t))
                 // A file that cannot be read is named with the key that names it.
