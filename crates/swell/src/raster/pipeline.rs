@@ -201,11 +201,16 @@ fn raster_band<V: Varying, S>(
 ) where
     S: Fn(&Fragment<V>) -> Vec3 + Sync,
 {
-    walk_band(chunks, band, depth, |i, at| {
-        // The triangle is at hand here: no look-up by index, as the deferred path needs.
-        let corners = corner_varyings(at.chunk, at.triangle, vertices);
-        color[i] = shader(&fragment_at(at.tri, &corners, at.cov.linear, at.cov.x, at.cov.y));
-    });
+    // A triangle's corners are gathered once, when its walk starts, not per pixel (they are
+    // looked up by index in a vertex array of megabytes).
+    walk_band(
+        chunks,
+        band,
+        depth,
+        |chunk, triangle| corner_varyings(chunk, triangle, vertices),
+        #[inline(always)]
+        |i, corners, at| color[i] = shader(&fragment_at(at.tri, corners, at.cov.linear, at.cov.x, at.cov.y)),
+    );
 }
 
 /// The nearest triangle found so far at a pixel of a deferred draw: which one and where in it.
@@ -246,24 +251,26 @@ fn fragment_at<V: Varying>(tri: &SetupTriangle<()>, corners: &[V; 3], linear: [f
     Fragment { varying, primitive: tri.primitive, x, y }
 }
 
-/// Where a pixel of a band is covered: the chunk, the triangle (index and setup) and the coverage.
-struct Covered<'a, V> {
-    chunk: &'a Chunk<V>,
+/// Where a pixel of a band is covered: the chunk's index, the triangle (index and setup) and the
+/// coverage.
+struct Covered<'a> {
     chunk_index: u32,
     triangle: u32,
     tri: &'a SetupTriangle<()>,
     cov: super::triangle::Coverage,
 }
 
-/// Walks every triangle binned to `band` in submission order and calls `nearer(pixel, covered)` for
-/// each covered pixel whose depth it passes (strictly nearer: the first of equal depths wins),
-/// after writing the new depth.
+/// Walks every triangle binned to `band` in submission order and calls `nearer(pixel, prepared,
+/// covered)` for each covered pixel whose depth it passes (strictly nearer: the first of equal
+/// depths wins), after writing the new depth; `prepared` is what `begin(chunk, triangle)` returned
+/// for the triangle when its walk started.
 #[inline(always)]
-fn walk_band<V: Varying>(
+fn walk_band<V: Varying, T>(
     chunks: &[Chunk<V>],
     band: Band,
     depth: &mut [f32],
-    mut nearer: impl FnMut(usize, Covered<V>),
+    mut begin: impl FnMut(&Chunk<V>, u32) -> T,
+    mut nearer: impl FnMut(usize, &T, Covered),
 ) {
     let Band { index: band, row, height } = band;
     let y0 = band as u32 * BAND_ROWS;
@@ -271,14 +278,21 @@ fn walk_band<V: Varying>(
     for (c, chunk) in chunks.iter().enumerate() {
         for &t in &chunk.bins[band] {
             let tri = &chunk.triangles[t as usize];
-            tri.scan((y0, y1), |cov| {
-                let i = (cov.y - y0) as usize * row + cov.x as usize;
-                let z = tri.depth(cov.linear);
-                if z < depth[i] {
-                    depth[i] = z;
-                    nearer(i, Covered { chunk, chunk_index: c as u32, triangle: t, tri, cov });
-                }
-            });
+            let prepared = begin(chunk, t);
+            tri.scan(
+                (y0, y1),
+                // Inlined into both of the scan's loops: a call per pixel cost a Gouraud pixel
+                // a third of its instructions (callgrind, `coast`).
+                #[inline(always)]
+                |cov| {
+                    let i = (cov.y - y0) as usize * row + cov.x as usize;
+                    let z = tri.depth(cov.linear);
+                    if z < depth[i] {
+                        depth[i] = z;
+                        nearer(i, &prepared, Covered { chunk_index: c as u32, triangle: t, tri, cov });
+                    }
+                },
+            );
         }
     }
 }
@@ -303,10 +317,16 @@ fn raster_band_deferred<V: Varying, S>(
     hits.resize(n, Hit::default());
     covered.clear();
     covered.resize(n, false);
-    walk_band(chunks, band, depth, |i, at| {
-        hits[i] = Hit { chunk: at.chunk_index, triangle: at.triangle, linear: at.cov.linear };
-        covered[i] = true;
-    });
+    walk_band(
+        chunks,
+        band,
+        depth,
+        |_, _| (),
+        |i, _, at| {
+            hits[i] = Hit { chunk: at.chunk_index, triangle: at.triangle, linear: at.cov.linear };
+            covered[i] = true;
+        },
+    );
     let y0 = band.index as u32 * BAND_ROWS;
     let row = band.row;
     for (r, (hits, covered)) in hits.chunks_exact(row).zip(covered.chunks_exact(row)).enumerate() {
