@@ -5,6 +5,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use crate::math::{Lanes, Vec3Lanes, LANES};
 use crate::raster::Framebuffer;
 use crate::scene::{Camera, SkyRadiance, SunDisc};
 
@@ -21,7 +22,7 @@ const SPAN: usize = 8;
 /// A tabulated sky ([`SkyRadiance::is_tabulated`], Preetham's) varies over degrees while a pixel
 /// is a few hundredths of one, so it is looked up every [`SPAN`] pixels of a row and blended
 /// linearly between them (the sun disc, which is sharp, stays per pixel); the gradient sky is
-/// evaluated at every pixel, as before.
+/// evaluated at every pixel, many at a time.
 pub fn draw(fb: &mut Framebuffer, camera: &Camera, sky: &SkyRadiance, sun: Option<&SunDisc>) {
     let (width, height) = (fb.width(), fb.height());
     let rays = SkyRays::new(camera, width as f32 / height as f32);
@@ -50,15 +51,25 @@ pub fn draw(fb: &mut Framebuffer, camera: &Camera, sky: &SkyRadiance, sun: Optio
         });
         return;
     }
-    fb.fill_background(|y| {
-        let ndc_y = 1.0 - 2.0 * (y as f32 + 0.5) / height as f32;
-        let row = rays.row(ndc_y);
-        move |x| {
-            let ndc_x = 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
-            let dir = row.direction(ndc_x);
-            match sun {
-                Some(s) => sky.radiance(dir) + s.radiance(dir),
-                None => sky.radiance(dir),
+    // The gradient sky (and sun) [`LANES`] pixels at a time: the lane formulas are the scalar
+    // ones, lane by lane, and a call per pixel cost the sky pass most of its time.
+    fb.fill_background_rows(|y, colors, depth| {
+        let row = rays.row(1.0 - 2.0 * (y as f32 + 0.5) / height as f32);
+        for x0 in (0..colors.len()).step_by(LANES) {
+            let n = LANES.min(colors.len() - x0);
+            if depth[x0..x0 + n].iter().all(|&d| d < 1.0) {
+                continue;
+            }
+            let ndc_x = Lanes::from_fn(|i| 2.0 * ((x0 + i) as f32 + 0.5) / width as f32 - 1.0);
+            let dir = row.directions(ndc_x);
+            let c = match sun {
+                Some(s) => sky.radiance_lanes(dir) + s.radiance_lanes(dir),
+                None => sky.radiance_lanes(dir),
+            };
+            for (i, (color, &d)) in colors[x0..x0 + n].iter_mut().zip(&depth[x0..x0 + n]).enumerate() {
+                if d >= 1.0 {
+                    *color = c.lane(i);
+                }
             }
         }
     });
@@ -102,6 +113,13 @@ impl SkyRow {
     pub fn direction(&self, ndc_x: f32) -> Vec3 {
         // The same sum, in the same order, as computed per pixel before the row was factored out.
         (self.forward + self.right * ndc_x + self.up_y).normalize()
+    }
+
+    /// [`Self::direction`] for many `ndc_x` at once (the same operations lane by lane).
+    #[inline(always)]
+    pub fn directions(&self, ndc_x: Lanes) -> Vec3Lanes {
+        let splat = Vec3Lanes::splat;
+        (splat(self.forward) + splat(self.right).scale(ndc_x) + splat(self.up_y)).normalize_or(Vec3::Y)
     }
 }
 
