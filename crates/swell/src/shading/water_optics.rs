@@ -207,10 +207,19 @@ pub fn shade_water_lanes(
     let n = points.normal.dot(to_eye).lt(0.0).select3(-points.normal, points.normal);
     let cos_i = n.dot(to_eye);
     let unresolved = points.unresolved.max(0.0);
-    let f = unresolved.gt(0.0).select(
-        mean_fresnel_lanes(cos_i, unresolved, fresnel_dielectric(1.0, m.refractive_index)),
-        fresnel_dielectric_lanes(cos_i, m.refractive_index),
-    );
+    // Each Fresnel only where some lane needs it: near water has no unresolved slopes, far water
+    // little else.
+    let rough = unresolved.gt(0.0);
+    let f = if !rough.any() {
+        fresnel_dielectric_lanes(cos_i, m.refractive_index)
+    } else if !unresolved.le(0.0).any() {
+        mean_fresnel_lanes(cos_i, unresolved, fresnel_dielectric(1.0, m.refractive_index))
+    } else {
+        rough.select(
+            mean_fresnel_lanes(cos_i, unresolved, fresnel_dielectric(1.0, m.refractive_index)),
+            fresnel_dielectric_lanes(cos_i, m.refractive_index),
+        )
+    };
 
     // The sky the slopes' spread of normals reflects, averaged over two normals tilted by the
     // slopes' deviation towards and away from the eye (one normal, twice, when nothing is
@@ -242,8 +251,13 @@ pub fn shade_water_lanes(
         None => lit * m.color,
     };
     let mut transmitted = body;
-    let refracted = refract_lanes(-to_eye, n, 1.0 / m.refractive_index);
     let bottom_lanes = if look.seabed.anywhere() { live } else { 0 };
+    // Open water has no bottom to refract to.
+    let refracted = if bottom_lanes > 0 {
+        refract_lanes(-to_eye, n, 1.0 / m.refractive_index)
+    } else {
+        Vec3Lanes::splat(Vec3::ZERO)
+    };
     for i in 0..bottom_lanes {
         let t = refracted.lane(i);
         // Beyond the critical angle `refract` gives no ray (a NaN lane here): only the body shows.
