@@ -54,67 +54,57 @@ pub fn draw(fb: &mut Framebuffer, camera: &Camera, sky: &SkyRadiance, sun: Optio
     // The gradient sky (and sun) [`LANES`] pixels at a time: the lane formulas are the scalar
     // ones, lane by lane, and a call per pixel cost the sky pass most of its time.
     fb.fill_background_rows(|y, colors, depth| {
-        let row = rays.row(1.0 - 2.0 * (y as f32 + 0.5) / height as f32);
-        gradient_row(&row, width, sky, sun, colors, depth);
+        let row = GradientRow { rays: rays.row(1.0 - 2.0 * (y as f32 + 0.5) / height as f32), width, sky, sun };
+        row.fill(colors, depth);
     });
 }
 
-/// The gradient sky (and sun) of one row's pixels left at the far plane, with AVX2 where the CPU
-/// has it: the same IEEE operations lane by lane either way (no fused multiply-add), so the image
-/// does not depend on the CPU.
-fn gradient_row(
-    row: &SkyRow,
+/// One image row of the gradient sky (and sun): its rays, the image width and what it shows.
+struct GradientRow<'a> {
+    rays: SkyRow,
     width: u32,
-    sky: &SkyRadiance,
-    sun: Option<&SunDisc>,
-    colors: &mut [Vec3],
-    depth: &[f32],
-) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU supports AVX2, checked just above.
-        unsafe { gradient_row_avx2(row, width, sky, sun, colors, depth) };
-        return;
-    }
-    gradient_row_lanes(row, width, sky, sun, colors, depth);
+    sky: &'a SkyRadiance,
+    sun: Option<&'a SunDisc>,
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn gradient_row_avx2(
-    row: &SkyRow,
-    width: u32,
-    sky: &SkyRadiance,
-    sun: Option<&SunDisc>,
-    colors: &mut [Vec3],
-    depth: &[f32],
-) {
-    gradient_row_lanes(row, width, sky, sun, colors, depth);
-}
-
-#[inline(always)]
-fn gradient_row_lanes(
-    row: &SkyRow,
-    width: u32,
-    sky: &SkyRadiance,
-    sun: Option<&SunDisc>,
-    colors: &mut [Vec3],
-    depth: &[f32],
-) {
-    for x0 in (0..colors.len()).step_by(LANES) {
-        let n = LANES.min(colors.len() - x0);
-        if depth[x0..x0 + n].iter().all(|&d| d < 1.0) {
-            continue;
+impl GradientRow<'_> {
+    /// Writes the row's pixels left at the far plane (`depth` 1), with AVX2 where the CPU has
+    /// it: the same IEEE operations lane by lane either way (no fused multiply-add), so the image
+    /// does not depend on the CPU.
+    fn fill(&self, colors: &mut [Vec3], depth: &[f32]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2, checked just above.
+            unsafe { self.fill_avx2(colors, depth) };
+            return;
         }
-        let ndc_x = Lanes::from_fn(|i| 2.0 * ((x0 + i) as f32 + 0.5) / width as f32 - 1.0);
-        let dir = row.directions(ndc_x);
-        let c = match sun {
-            Some(s) => sky.radiance_lanes(dir) + s.radiance_lanes(dir),
-            None => sky.radiance_lanes(dir),
-        };
-        for (i, (color, &d)) in colors[x0..x0 + n].iter_mut().zip(&depth[x0..x0 + n]).enumerate() {
-            if d >= 1.0 {
-                *color = c.lane(i);
+        self.fill_lanes(colors, depth);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn fill_avx2(&self, colors: &mut [Vec3], depth: &[f32]) {
+        self.fill_lanes(colors, depth);
+    }
+
+    #[inline(always)]
+    fn fill_lanes(&self, colors: &mut [Vec3], depth: &[f32]) {
+        let Self { rays, width, sky, sun } = self;
+        for x0 in (0..colors.len()).step_by(LANES) {
+            let n = LANES.min(colors.len() - x0);
+            if depth[x0..x0 + n].iter().all(|&d| d < 1.0) {
+                continue;
+            }
+            let ndc_x = Lanes::from_fn(|i| 2.0 * ((x0 + i) as f32 + 0.5) / *width as f32 - 1.0);
+            let dir = rays.directions(ndc_x);
+            let c = match sun {
+                Some(s) => sky.radiance_lanes(dir) + s.radiance_lanes(dir),
+                None => sky.radiance_lanes(dir),
+            };
+            for (i, (color, &d)) in colors[x0..x0 + n].iter_mut().zip(&depth[x0..x0 + n]).enumerate() {
+                if d >= 1.0 {
+                    *color = c.lane(i);
+                }
             }
         }
     }
