@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::rgba8_encoder::{encode_channel, Rgba8Encoder};
 
-/// Rows per task of [`Framebuffer::fill_background`].
+/// Rows per task of [`Framebuffer::fill_background_rows`].
 const BACKGROUND_ROWS: usize = 8;
 
 /// A linear-RGB colour buffer with a depth buffer, top row first.
@@ -93,38 +93,19 @@ impl Framebuffer {
         });
     }
 
-    /// Sets the colour of every pixel whose depth is still the far plane (1) to `row(y)(x)`, rows
-    /// in parallel: drawing the background after the geometry shades only what shows. `row(y)` is
-    /// called once per row, so what depends only on the row is computed once.
+    /// Fills the background, rows in parallel: `row(y, colors, depth)` may write any pixel of row
+    /// `y`'s `colors` whose `depth` is still the far plane (1). Drawn after the geometry, it
+    /// shades only what shows; a background smooth along the row can be evaluated many pixels at
+    /// a time, or sparsely and interpolated.
     // Out of line so that profiles name it (the sky pass).
-    #[inline(never)]
-    pub fn fill_background<R>(&mut self, row: impl Fn(u32) -> R + Sync)
-    where
-        R: Fn(u32) -> Vec3,
-    {
-        let w = self.width as usize;
-        // A few rows per task: the background is usually a band (the sky above the horizon), and
-        // rayon's adaptive split would leave one thread most of it.
-        let rows = self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().with_max_len(BACKGROUND_ROWS);
-        rows.for_each(|(y, (colors, depth))| {
-            let background = row(y as u32);
-            for (x, (c, &d)) in colors.iter_mut().zip(depth).enumerate() {
-                if d >= 1.0 {
-                    *c = background(x as u32);
-                }
-            }
-        });
-    }
-
-    /// Like [`Framebuffer::fill_background`], with the whole row at once: `row(y, colors, depth)`
-    /// may write any pixel of `colors` whose `depth` is still the far plane (1), so a background
-    /// that is smooth along the row can be evaluated sparsely and interpolated.
     #[inline(never)]
     pub fn fill_background_rows(&mut self, row: impl Fn(u32, &mut [Vec3], &[f32]) + Sync) {
         let w = self.width as usize;
         if w == 0 {
             return;
         }
+        // A few rows per task: the background is usually a band (the sky above the horizon), and
+        // rayon's adaptive split would leave one thread most of it.
         let rows = self.color.par_chunks_mut(w).zip(self.depth.par_chunks(w)).enumerate().with_max_len(BACKGROUND_ROWS);
         rows.for_each(|(y, (colors, depth))| row(y as u32, colors, depth));
     }
