@@ -251,24 +251,21 @@ pub fn shade_water_lanes(
         None => lit * m.color,
     };
     let mut transmitted = body;
-    let bottom_lanes = if look.seabed.anywhere() { live } else { 0 };
     // Open water has no bottom to refract to.
-    let refracted = if bottom_lanes > 0 {
-        refract_lanes(-to_eye, n, 1.0 / m.refractive_index)
-    } else {
-        Vec3Lanes::splat(Vec3::ZERO)
-    };
-    for i in 0..bottom_lanes {
-        let t = refracted.lane(i);
-        // Beyond the critical angle `refract` gives no ray (a NaN lane here): only the body shows.
-        if t.y.is_nan() || t.y >= -1e-4 {
-            continue;
-        }
-        if let Some((path, height, albedo)) = bottom_hit(look.seabed, p.lane(i), t) {
-            let bottom = albedo * bottom_irradiance(env, m, p.y.0[i].max(0.0) - height);
-            let transmittance = (-m.absorption * path).exp();
-            let v = bottom * transmittance + body.lane(i) * (Vec3::ONE - transmittance);
-            transmitted.set_lane(i, v);
+    if look.seabed.anywhere() {
+        let refracted = refract_lanes(-to_eye, n, 1.0 / m.refractive_index);
+        for i in 0..live {
+            let t = refracted.lane(i);
+            // Beyond the critical angle `refract` gives no ray (a NaN lane here): only the body shows.
+            if t.y.is_nan() || t.y >= -1e-4 {
+                continue;
+            }
+            if let Some((path, height, albedo)) = bottom_hit(look.seabed, p.lane(i), t) {
+                let bottom = albedo * bottom_irradiance(env, m, p.y.0[i].max(0.0) - height);
+                let transmittance = (-m.absorption * path).exp();
+                let v = bottom * transmittance + body.lane(i) * (Vec3::ONE - transmittance);
+                transmitted.set_lane(i, v);
+            }
         }
     }
 
