@@ -103,7 +103,7 @@ impl WaterRun for FarRow<'_> {
         (self.eye + dir * (-self.eye.y / dir.y), Vec3::Y, 0.0)
     }
     #[inline(always)]
-    fn unresolved(&self, _: Vec3Lanes, _: Vec3Lanes) -> Lanes {
+    fn unresolved(&self, _: usize, _: usize, _: Vec3Lanes, _: Vec3Lanes) -> Lanes {
         Lanes::splat(self.variance)
     }
 }

@@ -43,7 +43,13 @@ pub fn draw(fb: &mut Framebuffer, frame: &FrameContext, terrain: &TerrainBody, d
     let shader = TerrainShader { env: &frame.env, material: &terrain.material };
     draw.draw(
         fb,
-        ShadedMesh { positions: &land.positions, normals: &land.normals, foam: None, indices: &land.indices },
+        ShadedMesh {
+            positions: &land.positions,
+            normals: &land.normals,
+            foam: None,
+            unresolved: None,
+            indices: &land.indices,
+        },
         &|p| clip_from_world * Vec4::from((p, 1.0)),
         Shading::Gouraud,
         &shader,

@@ -110,21 +110,24 @@ impl Renderer {
                 WaterExtent::Patch => None,
             };
             let mesh = match sea {
-                Some(c) => shaded_draw::ShadedMesh {
+                Some(sea_lod::SeaMesh { clipmap: c, unresolved }) => shaded_draw::ShadedMesh {
                     positions: &c.positions,
                     normals: &c.normals,
                     foam: c.has_foam.then_some(&c.foam[..]),
+                    unresolved: Some(unresolved),
                     indices: &c.indices,
                 },
                 None => shaded_draw::ShadedMesh {
                     positions: &water.mesh.positions,
                     normals: &water.mesh.normals,
                     foam: water.mesh.has_foam.then_some(&water.mesh.foam[..]),
+                    unresolved: None,
                     indices: &water.mesh.indices,
                 },
             };
-            let filter =
-                sea.map(|c| sea_lod::FootprintFilter::new(&water.slopes, &scene.camera, h, c, water.placement.scale));
+            let filter = sea.map(|s| {
+                sea_lod::FootprintFilter::new(&water.slopes, &scene.camera, h, s.clipmap, water.placement.scale)
+            });
             water_pass::draw(
                 fb,
                 &frame,

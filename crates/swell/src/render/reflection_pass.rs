@@ -111,7 +111,7 @@ pub fn draw<'a>(
     };
     draw.redraw(
         image,
-        ShadedMesh { positions: &mesh.positions, normals: &mesh.normals, foam: None, indices },
+        ShadedMesh { positions: &mesh.positions, normals: &mesh.normals, foam: None, unresolved: None, indices },
         &mirrored,
         &shader,
     );

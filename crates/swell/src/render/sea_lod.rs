@@ -9,7 +9,9 @@
 //! `sqrt(1 - u)`, `u` the fraction of the variance unresolved at that vertex, so the geometric
 //! normals carry the resolved variance), and each pixel adds back, as roughness, the variance of
 //! the waves shorter than twice the larger of its footprint and the ring's spacing
-//! ([`FootprintFilter::variance`]). The scaling treats all waves alike (a long swell far out loses
+//! ([`FootprintFilter::variance`], computed at the vertices and interpolated like the normals:
+//! it varies smoothly with distance, and per pixel it was a quarter of the `sea`'s water
+//! shading; images differ by at most 3 levels in a few thousand pixels). The scaling treats all waves alike (a long swell far out loses
 //! tilt with the short waves); per-wave removal from the geometry is left for later. The flat far
 //! field beyond the rings takes the whole variance (`far_field_pass.rs`).
 
@@ -26,14 +28,27 @@ use crate::shading::UnresolvedSlopes;
 pub struct SeaLod {
     /// The rings and the (levels, ring cells, spacing) they were built with.
     clipmap: Option<((u32, u32, u32), Clipmap)>,
+    /// Slope variance each vertex's pixel leaves unresolved ([`FootprintFilter::variance`]).
+    unresolved: Vec<f32>,
+}
+
+/// The unbounded sea's mesh for one frame: the displaced rings, and each vertex's unresolved
+/// slope variance for the shading to interpolate.
+#[derive(Clone, Copy)]
+pub struct SeaMesh<'a> {
+    /// The rings, in world space.
+    pub clipmap: &'a Clipmap,
+    /// Slope variance (both axes, >= 0) the pixel at each vertex leaves unresolved.
+    pub unresolved: &'a [f32],
 }
 
 impl SeaLod {
     /// Moves the rings under `camera`, displaces them with `water`'s model at time `t` (s),
     /// places them in the world and moves the slopes no pixel of a `rows`-row image resolves from
-    /// their normals to the shading; returns them, or `None` when the settings cannot make a mesh
-    /// (validation refuses those first, so the caller then draws the patch).
-    pub fn update(&mut self, water: &WaterBody, camera: &Camera, t: f64, rows: u32) -> Option<&Clipmap> {
+    /// their normals to the shading (each vertex's share in [`SeaMesh::unresolved`]); returns
+    /// them, or `None` when the settings cannot make a mesh (validation refuses those first, so
+    /// the caller then draws the patch).
+    pub fn update(&mut self, water: &WaterBody, camera: &Camera, t: f64, rows: u32) -> Option<SeaMesh<'_>> {
         let lod = water.lod;
         let spacing = lod.spacing.unwrap_or_else(|| {
             let s = water.mesh.grid.spacing();
@@ -50,20 +65,23 @@ impl SeaLod {
         water.placement.apply_to(&mut clipmap.positions, &mut clipmap.normals);
         let filter = FootprintFilter::new(&water.slopes, camera, rows, clipmap, water.placement.scale);
         let total = water.slopes.total();
+        self.unresolved.clear();
+        self.unresolved.resize(clipmap.positions.len(), 0.0);
         if total > 0.0 {
             let Clipmap { positions, normals, .. } = &mut *clipmap;
-            normals.par_iter_mut().zip(positions.par_iter()).for_each(|(n, &p)| {
+            (normals, &mut self.unresolved).into_par_iter().zip(positions.par_iter()).for_each(|((n, u), &p)| {
                 // The share of the slope variance this vertex's pixel resolves, and the tilt that
                 // leaves the geometric normals with it: slope (dh/dx, dh/dz) = -(n.x, n.z) / n.y,
-                // scaled by its square root.
-                let keep = (1.0 - filter.variance(p, *n) / total).max(0.0).sqrt();
+                // scaled by its square root. The rest goes to the shading.
+                *u = filter.variance(p, *n);
+                let keep = (1.0 - *u / total).max(0.0).sqrt();
                 if keep < 1.0 {
                     let y = n.y.abs().max(1e-3);
                     *n = Vec3::new(n.x * keep, y, n.z * keep).normalize_or(Vec3::Y);
                 }
             });
         }
-        Some(clipmap)
+        Some(SeaMesh { clipmap, unresolved: &self.unresolved })
     }
 }
 
@@ -156,7 +174,7 @@ mod tests {
             world.update(2.5).unwrap();
             let mut lod = SeaLod::default();
             let water = world.water.as_ref().unwrap();
-            let clipmap = lod.update(water, &world.scene.camera, world.time(), 720).unwrap();
+            let clipmap = lod.update(water, &world.scene.camera, world.time(), 720).unwrap().clipmap;
             let mut worst = 0.0f32;
             for (i, p) in clipmap.positions.iter().enumerate().step_by(97) {
                 let h = world.water_height_at(p.x, p.z).unwrap();
@@ -173,7 +191,7 @@ mod tests {
         let water = world.water.as_ref().unwrap();
         let mut lod = SeaLod::default();
         let camera = world.scene.camera;
-        let clipmap = lod.update(water, &camera, 0.0, 720).unwrap();
+        let clipmap = lod.update(water, &camera, 0.0, 720).unwrap().clipmap;
         let f = FootprintFilter::new(&water.slopes, &camera, 720, clipmap, 1.0);
         let at = |d: f32| f.variance(camera.eye + Vec3::new(0.0, -camera.eye.y, -d), Vec3::Y);
         let (near, mid, far) = (at(5.0), at(200.0), at(3000.0));

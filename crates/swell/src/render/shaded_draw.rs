@@ -71,6 +71,9 @@ pub(crate) struct ShadedMesh<'a> {
     pub normals: &'a [Vec3],
     /// Foam coverage per position, or `None` for a surface without foam (shaded with 0).
     pub foam: Option<&'a [f32]>,
+    /// Unresolved slope variance per position ([`SurfaceVarying::unresolved`]), interpolated for
+    /// per-pixel shading, or `None` for a point-sampled surface (0).
+    pub unresolved: Option<&'a [f32]>,
     /// Three indices per triangle.
     pub indices: &'a [u32],
 }
@@ -107,6 +110,7 @@ impl ShadedDraw {
     ) {
         self.shading = shading;
         let foam = |i: usize| mesh.foam.map_or(0.0, |f| f[i]);
+        let unresolved = |i: usize| mesh.unresolved.map_or(0.0, |u| u[i]);
         let n = mesh.positions.len();
         match shading {
             Shading::Flat => {
@@ -148,7 +152,7 @@ impl ShadedDraw {
                     let (p, n) = (mesh.positions[i], mesh.normals[i]);
                     *cv = ClipVertex {
                         position: clip(p),
-                        varying: SurfaceVarying { position: p, normal: n, foam: foam(i) },
+                        varying: SurfaceVarying { position: p, normal: n, foam: foam(i), unresolved: unresolved(i) },
                     };
                 });
                 self.draw_surface_pixels(fb, mesh, shader);
@@ -304,7 +308,13 @@ mod tests {
         let foam = [0.25; 4];
         // Counter-clockwise seen from above (+Y).
         let indices = [0, 2, 1, 0, 3, 2];
-        let mesh = ShadedMesh { positions: &positions, normals: &normals, foam: Some(&foam), indices: &indices };
+        let mesh = ShadedMesh {
+            positions: &positions,
+            normals: &normals,
+            foam: Some(&foam),
+            unresolved: None,
+            indices: &indices,
+        };
         // Looking straight down: x to the right, z down the image.
         let clip = |p: Vec3| Vec4::new(p.x * 0.5, -p.z * 0.5, 0.0, 1.0);
         for shading in Shading::ALL {

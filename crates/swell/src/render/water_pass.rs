@@ -37,9 +37,10 @@ impl SurfaceShader for WaterShader<'_> {
         }
     }
 
-    /// A row's pixels many at a time ([`shade_water_run`]).
+    /// A row's pixels many at a time ([`shade_water_run`]), each with the unresolved slope
+    /// variance interpolated from the mesh's vertices (the unbounded sea's; 0 on a patch).
     fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
-        shade_water_run(self.env, &self.look, self.lobe, &Pixels { pixels, filter: self.filter }, out);
+        shade_water_run(self.env, &self.look, self.lobe, &Pixels { pixels }, out);
     }
 
     /// Many vertices or faces at a time ([`shade_water_run`]).
@@ -63,15 +64,14 @@ impl WaterRun for Points<'_> {
         self.points[i]
     }
     #[inline(always)]
-    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
+    fn unresolved(&self, _: usize, _: usize, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
         unresolved(self.filter, position, normal)
     }
 }
 
-/// A row's run of water pixels, with the unbounded sea's filter when there is one.
+/// A row's run of water pixels, whose unresolved slope variance the rasterizer interpolated.
 struct Pixels<'a> {
     pixels: &'a [Fragment<SurfaceVarying>],
-    filter: Option<&'a FootprintFilter<'a>>,
 }
 
 impl WaterRun for Pixels<'_> {
@@ -84,8 +84,8 @@ impl WaterRun for Pixels<'_> {
         (v.position, v.normal, v.foam)
     }
     #[inline(always)]
-    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes {
-        unresolved(self.filter, position, normal)
+    fn unresolved(&self, first: usize, live: usize, _: Vec3Lanes, _: Vec3Lanes) -> Lanes {
+        Lanes::from_fn(|l| self.pixels[first + if l < live { l } else { 0 }].varying.unresolved)
     }
 }
 

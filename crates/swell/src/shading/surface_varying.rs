@@ -4,8 +4,9 @@ use glam::Vec3;
 
 use crate::raster::Varying;
 
-/// World position, normal and foam of a vertex, interpolated perspective-correctly for Phong and
-/// Blinn-Phong shading. The interpolated normal is not unit length: shaders normalise it.
+/// World position, normal, foam and unresolved slope variance of a vertex, interpolated
+/// perspective-correctly for Phong and Blinn-Phong shading. The interpolated normal is not unit
+/// length: shaders normalise it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SurfaceVarying {
     /// World position, metres.
@@ -14,6 +15,12 @@ pub struct SurfaceVarying {
     pub normal: Vec3,
     /// Foam coverage in [0, 1].
     pub foam: f32,
+    /// Slope variance (both axes summed, >= 0, dimensionless) of the waves the mesh and the pixel
+    /// cannot resolve, which the shading takes statistically; 0 for a point-sampled surface. The
+    /// unbounded sea computes it per vertex (`render/sea_lod.rs`): it varies smoothly with distance,
+    /// so interpolating it costs a pixel one weighted sum instead of a footprint, a logarithm and a
+    /// table look-up (a quarter of the `sea` preset's water shading).
+    pub unresolved: f32,
 }
 
 impl Varying for SurfaceVarying {
@@ -22,6 +29,7 @@ impl Varying for SurfaceVarying {
             position: self.position.lerp(other.position, t),
             normal: self.normal.lerp(other.normal, t),
             foam: self.foam + (other.foam - self.foam) * t,
+            unresolved: self.unresolved + (other.unresolved - self.unresolved) * t,
         }
     }
 
@@ -30,6 +38,7 @@ impl Varying for SurfaceVarying {
             position: a.position * w[0] + b.position * w[1] + c.position * w[2],
             normal: a.normal * w[0] + b.normal * w[1] + c.normal * w[2],
             foam: a.foam * w[0] + b.foam * w[1] + c.foam * w[2],
+            unresolved: a.unresolved * w[0] + b.unresolved * w[1] + c.unresolved * w[2],
         }
     }
 }

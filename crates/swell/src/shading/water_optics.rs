@@ -295,7 +295,7 @@ pub fn shade_water_lanes(
 
 /// A run of water points to shade together ([`shade_water_run`]): point `i` of `len`, as
 /// (world position m, normal of any length, foam in [0, 1]), and the unresolved slope variance of
-/// a batch of them from their positions and unit normals.
+/// a batch of them (given their positions and unit normals, for a run that computes it).
 pub trait WaterRun: Sync {
     /// Number of points.
     fn len(&self) -> usize;
@@ -305,8 +305,9 @@ pub trait WaterRun: Sync {
     }
     /// Point `i`, `i < len()`.
     fn point(&self, i: usize) -> (Vec3, Vec3, f32);
-    /// Unresolved slope variance of a batch of points (0: none).
-    fn unresolved(&self, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes;
+    /// Unresolved slope variance (0: none) of the batch whose lane `l` is point `first + l` for
+    /// `l < live` and point `first` beyond, at `position` with unit `normal`.
+    fn unresolved(&self, first: usize, live: usize, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes;
 }
 
 /// Shades every point of `run` into `out` (as many), a batch at a time through
@@ -343,7 +344,7 @@ fn shade_water_run_lanes(env: &Environment, look: &WaterLook, lobe: Lobe, run: &
             foam.0[i] = f;
         }
         let normal = normal.normalize_or(Vec3::Y);
-        let unresolved = run.unresolved(position, normal);
+        let unresolved = run.unresolved(start, live, position, normal);
         let c = shade_water_lanes(env, look, lobe, &WaterPoints { position, normal, foam, unresolved }, live);
         for (i, o) in out.iter_mut().enumerate() {
             *o = c.lane(i);
