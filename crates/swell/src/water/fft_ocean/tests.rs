@@ -416,19 +416,25 @@ fn cascades_split_the_band_without_counting_a_wave_twice() {
 fn an_aligned_mesh_reads_the_samples_the_bilinear_path_would_interpolate() {
     let mut o = ocean(&params(32, 64.0));
     o.advance(1.0).unwrap();
-    // Spacing 2 m = the field's; origin on sample (-3, 5).
-    let grid = GridSpec::new(Vec2::new(-6.0, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
-    assert_eq!(o.aligned_index(&grid), Some((-3, 5)));
-    let mut pos = vec![Vec3::ZERO; grid.vertex_count()];
-    let mut nrm = pos.clone();
-    o.evaluate(&grid, 1.0, &mut pos, &mut nrm);
-    for (idx, p) in pos.iter().enumerate().step_by(13) {
-        let r = grid.rest_position(idx % 41, idx / 41);
-        let f = o.fields_at(r.x, r.y);
-        assert!((p.y - f[0]).abs() < 1e-5 && (p.x - r.x - f[1]).abs() < 1e-5, "{p} vs {f:?}");
+    // Spacing 2 m = the field's, then 3 samples apart (a coarse clipmap ring); origin on sample
+    // (-3, 5).
+    for stride in [1usize, 3] {
+        let size = 80.0 * stride as f32;
+        let grid = GridSpec::new(Vec2::new(-6.0, 10.0), Vec2::splat(size), 40, 40).unwrap();
+        assert_eq!(o.aligned_index(&grid), Some(Aligned { i0: -3, j0: 5, stride: stride as i64 }));
+        let mut pos = vec![Vec3::ZERO; grid.vertex_count()];
+        let mut nrm = pos.clone();
+        o.evaluate(&grid, 1.0, &mut pos, &mut nrm);
+        for (idx, p) in pos.iter().enumerate().step_by(13) {
+            let r = grid.rest_position(idx % 41, idx / 41);
+            let f = o.fields_at(r.x, r.y);
+            assert!((p.y - f[0]).abs() < 1e-4 && (p.x - r.x - f[1]).abs() < 1e-4, "stride {stride}: {p} vs {f:?}");
+        }
     }
     let off = GridSpec::new(Vec2::new(-6.3, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
     assert_eq!(o.aligned_index(&off), None);
+    let between = GridSpec::new(Vec2::new(-6.0, 10.0), Vec2::splat(120.0), 40, 40).unwrap();
+    assert_eq!(o.aligned_index(&between), None, "3 m: one and a half samples apart");
 }
 
 mod blender {
