@@ -17,10 +17,9 @@ use rayon::prelude::*;
 
 use super::sky_pass::{SkyRays, SkyRow};
 use super::FrameContext;
-use crate::math::{Lanes, Vec3Lanes};
 use crate::raster::Framebuffer;
 use crate::scene::{Camera, WaterBody};
-use crate::shading::{lambert, shade_water_run, Lobe, NoBottom, UnresolvedSlopes, WaterLook, WaterRun};
+use crate::shading::{lambert, shade_water_run, Lobe, NoBottom, SurfaceVarying, UnresolvedSlopes, WaterLook, WaterRun};
 
 /// Rows per task: the far field is a band just under the horizon.
 const ROWS_PER_TASK: usize = 8;
@@ -97,13 +96,10 @@ impl WaterRun for FarRow<'_> {
         self.xs.len()
     }
     #[inline(always)]
-    fn point(&self, i: usize) -> (Vec3, Vec3, f32) {
+    fn point(&self, i: usize) -> SurfaceVarying {
         let ndc_x = 2.0 * (self.xs[i] as f32 + 0.5) / self.width - 1.0;
         let dir = self.row.direction(ndc_x);
-        (self.eye + dir * (-self.eye.y / dir.y), Vec3::Y, 0.0)
-    }
-    #[inline(always)]
-    fn unresolved(&self, _: usize, _: usize, _: Vec3Lanes, _: Vec3Lanes) -> Lanes {
-        Lanes::splat(self.variance)
+        let position = self.eye + dir * (-self.eye.y / dir.y);
+        SurfaceVarying { position, normal: Vec3::Y, foam: 0.0, unresolved: self.variance }
     }
 }

@@ -28,6 +28,7 @@ use super::terrain_pass::TerrainShader;
 use super::FrameContext;
 use crate::raster::Framebuffer;
 use crate::scene::{FarLand, Shading, TerrainBody};
+use crate::shading::SurfaceVarying;
 
 /// Rows per task: the fill is a band just under the horizon.
 const ROWS_PER_TASK: usize = 8;
@@ -78,7 +79,7 @@ fn fill_to_horizon(fb: &mut Framebuffer, frame: &FrameContext, land: &FarLand, s
                     continue;
                 }
                 if let Some(p) = land_beyond(land, eye, from, dir, sea) {
-                    *c = shader.shade(p, Vec3::Y, 0.0);
+                    *c = shader.shade(&SurfaceVarying { position: p, normal: Vec3::Y, ..SurfaceVarying::default() });
                     *d = FAR_FIELD_DEPTH;
                 }
             }

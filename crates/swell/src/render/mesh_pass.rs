@@ -9,6 +9,7 @@ use crate::error::{check_finite_vec, check_non_negative, Error, Result};
 use crate::mesh::TriangleMesh;
 use crate::raster::Framebuffer;
 use crate::scene::{Camera, Shading};
+use crate::shading::SurfaceVarying;
 
 /// A directional light and a diffuse material: `base * (ambient + color * max(0, N.L))`,
 /// `L = -dir` (colours linear).
@@ -67,9 +68,9 @@ struct MeshLightShader<'a> {
 }
 
 impl SurfaceShader for MeshLightShader<'_> {
-    fn shade(&self, _position: Vec3, n: Vec3, _foam: f32) -> Vec3 {
+    fn shade(&self, p: &SurfaceVarying) -> Vec3 {
         let light = self.light;
-        light.base_color * (light.ambient + light.color * n.dot(self.to_light).max(0.0))
+        light.base_color * (light.ambient + light.color * p.normal.dot(self.to_light).max(0.0))
     }
 }
 

@@ -125,15 +125,11 @@ impl Renderer {
                     indices: &water.mesh.indices,
                 },
             };
-            let filter = sea.map(|s| {
-                sea_lod::FootprintFilter::new(&water.slopes, &scene.camera, h, s.clipmap, water.placement.scale)
-            });
             water_pass::draw(
                 fb,
                 &frame,
                 water,
                 mesh,
-                filter.as_ref(),
                 &mut self.water_draw,
                 world.terrain.as_ref(),
                 reflection.as_ref(),

@@ -18,7 +18,6 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use crate::math::{Lanes, Vec3Lanes};
 use crate::mesh::Clipmap;
 use crate::scene::{Camera, WaterBody};
 use crate::shading::UnresolvedSlopes;
@@ -143,19 +142,6 @@ impl<'a> FootprintFilter<'a> {
         let r = (Vec2::new(p.x, p.z) - self.center).abs().max_element();
         let mesh = (4.0 * r / self.ring_cells).max(self.spacing);
         self.slopes.unresolved(FOOTPRINT_WIDTH * footprint.max(mesh))
-    }
-
-    /// [`Self::variance`] of eight points at once.
-    #[inline(always)]
-    pub fn variance_lanes(&self, p: Vec3Lanes, n: Vec3Lanes) -> Lanes {
-        let to_eye = Vec3Lanes::splat(self.eye) - p;
-        let distance = to_eye.length();
-        let cos = (n.dot(to_eye) / distance.max(1e-6)).abs().max(0.05);
-        let footprint = distance * self.pixel_angle / cos.sqrt();
-        let r = (p.x - self.center.x).abs().max((p.z - self.center.y).abs());
-        let mesh = (4.0 * r / self.ring_cells).max(self.spacing);
-        let width = FOOTPRINT_WIDTH * footprint.max(mesh);
-        self.slopes.unresolved_lanes(width)
     }
 }
 

@@ -34,18 +34,19 @@ const MARK_TASK: usize = 4096;
 /// so fixed-size tasks balance better than rayon's adaptive splitting.
 const SHADE_TASK: usize = 4096;
 
-/// What a surface looks like: the radiance (linear RGB) leaving world point `position` (m) with
-/// unit `normal` and foam coverage `foam` in [0, 1] towards the eye.
+/// What a surface looks like: the radiance (linear RGB) leaving a surface point towards the eye,
+/// given as a [`SurfaceVarying`]: world position (m), unit normal, foam coverage in [0, 1] and
+/// the slope variance the mesh and the pixel leave unresolved.
 pub(crate) trait SurfaceShader: Sync {
-    /// Radiance at one surface point.
-    fn shade(&self, position: Vec3, normal: Vec3, foam: f32) -> Vec3;
+    /// Radiance at one surface point (unit normal).
+    fn shade(&self, point: &SurfaceVarying) -> Vec3;
 
-    /// Radiance at a run of surface points (position, unit normal, foam), into `out` (as many):
-    /// the vertices of a Gouraud draw, the faces of a flat one. The default shades each with
-    /// [`Self::shade`]; a shader may shade several at once with the same result.
-    fn shade_points(&self, points: &[(Vec3, Vec3, f32)], out: &mut [Vec3]) {
-        for (&(p, n, f), o) in points.iter().zip(out.iter_mut()) {
-            *o = self.shade(p, n, f);
+    /// Radiance at a run of surface points (unit normals), into `out` (as many): the vertices of
+    /// a Gouraud draw, the faces of a flat one. The default shades each with [`Self::shade`]; a
+    /// shader may shade several at once with the same result.
+    fn shade_points(&self, points: &[SurfaceVarying], out: &mut [Vec3]) {
+        for (p, o) in points.iter().zip(out.iter_mut()) {
+            *o = self.shade(p);
         }
     }
 
@@ -55,14 +56,14 @@ pub(crate) trait SurfaceShader: Sync {
     /// as each pixel's colour depends on that pixel alone.
     fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
         for (f, o) in pixels.iter().zip(out.iter_mut()) {
-            let v = &f.varying;
-            *o = self.shade(v.position, v.normal.normalize_or(Vec3::Y), v.foam);
+            let v = f.varying;
+            *o = self.shade(&SurfaceVarying { normal: v.normal.normalize_or(Vec3::Y), ..v });
         }
     }
 }
 
 /// A triangle mesh as the shaded draw reads it: world positions (m), unit vertex normals, optional
-/// per-vertex foam in [0, 1], and counter-clockwise index triples.
+/// per-vertex foam in [0, 1] and unresolved slope variance, and counter-clockwise index triples.
 #[derive(Clone, Copy)]
 pub(crate) struct ShadedMesh<'a> {
     /// World positions, metres.
@@ -120,17 +121,20 @@ impl ShadedDraw {
                 self.faces.resize(mesh.indices.len() / 3, Vec3::ZERO);
                 self.faces.par_chunks_mut(SHADE_TASK).zip(mesh.indices.par_chunks(3 * SHADE_TASK)).for_each(
                     |(faces, tris)| {
-                        let points: Vec<(Vec3, Vec3, f32)> = tris
+                        let points: Vec<SurfaceVarying> = tris
                             .chunks_exact(3)
                             .map(|t| {
                                 // Indexed one by one: `[0, 1, 2].map` is not always inlined here.
-                                let (a, b, d) =
-                                    (positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]);
+                                let (i, j, k) = (t[0] as usize, t[1] as usize, t[2] as usize);
+                                let (a, b, d) = (positions[i], positions[j], positions[k]);
                                 // Triangles wind counter-clockwise seen from their front, so this
                                 // normal points out of it (up, for water and terrain).
-                                let n = (b - a).cross(d - a).normalize_or(Vec3::Y);
-                                let f = (foam(t[0] as usize) + foam(t[1] as usize) + foam(t[2] as usize)) / 3.0;
-                                ((a + b + d) / 3.0, n, f)
+                                SurfaceVarying {
+                                    position: (a + b + d) / 3.0,
+                                    normal: (b - a).cross(d - a).normalize_or(Vec3::Y),
+                                    foam: (foam(i) + foam(j) + foam(k)) / 3.0,
+                                    unresolved: (unresolved(i) + unresolved(j) + unresolved(k)) / 3.0,
+                                }
                             })
                             .collect();
                         shader.shade_points(&points, faces);
@@ -214,8 +218,15 @@ impl ShadedDraw {
             let base = block * SHADE_TASK;
             let lit: Vec<usize> =
                 (base..base + colored.len()).filter(|&i| visible[i].load(Ordering::Relaxed)).collect();
-            let points: Vec<(Vec3, Vec3, f32)> =
-                lit.iter().map(|&i| (mesh.positions[i], mesh.normals[i], mesh.foam.map_or(0.0, |f| f[i]))).collect();
+            let points: Vec<SurfaceVarying> = lit
+                .iter()
+                .map(|&i| SurfaceVarying {
+                    position: mesh.positions[i],
+                    normal: mesh.normals[i],
+                    foam: mesh.foam.map_or(0.0, |f| f[i]),
+                    unresolved: mesh.unresolved.map_or(0.0, |u| u[i]),
+                })
+                .collect();
             let mut colors = vec![Vec3::ZERO; points.len()];
             shader.shade_points(&points, &mut colors);
             for (&i, c) in lit.iter().zip(colors) {
@@ -294,8 +305,8 @@ mod tests {
     fn every_shading_model_goes_through_the_one_path() {
         struct Even;
         impl SurfaceShader for Even {
-            fn shade(&self, _: Vec3, n: Vec3, foam: f32) -> Vec3 {
-                Vec3::new(n.y, 0.5, foam)
+            fn shade(&self, p: &SurfaceVarying) -> Vec3 {
+                Vec3::new(p.normal.y, 0.5, p.foam)
             }
         }
         let positions = [

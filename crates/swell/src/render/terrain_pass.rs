@@ -8,7 +8,7 @@ use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use super::FrameContext;
 use crate::raster::Framebuffer;
 use crate::scene::{TerrainBody, TerrainMaterial};
-use crate::shading::{shade_terrain, Environment};
+use crate::shading::{shade_terrain, Environment, SurfaceVarying};
 
 /// Land as [`shade_terrain`] lights it; it has no specular term, so the colour of a point does
 /// not depend on the eye (which lets the reflection pass reuse it).
@@ -20,8 +20,8 @@ pub(crate) struct TerrainShader<'a> {
 }
 
 impl SurfaceShader for TerrainShader<'_> {
-    fn shade(&self, position: Vec3, normal: Vec3, _foam: f32) -> Vec3 {
-        self.env.haze(position, shade_terrain(self.env, self.material, position, normal))
+    fn shade(&self, p: &SurfaceVarying) -> Vec3 {
+        self.env.haze(p.position, shade_terrain(self.env, self.material, p.position, p.normal))
     }
 }
 

@@ -5,7 +5,7 @@
 use glam::{Vec2, Vec3};
 
 use super::slope_variance::{mean_fresnel_lanes, spread_normals_lanes, widened_lobe_lanes};
-use super::{fresnel_dielectric, Environment, Lobe, ReflectionMap};
+use super::{fresnel_dielectric, Environment, Lobe, ReflectionMap, SurfaceVarying};
 use crate::math::{fast_pow, Lanes, Vec3Lanes};
 use crate::scene::{FoamPattern, Light, TerrainBody, Texture, WaterMaterial};
 
@@ -293,9 +293,8 @@ pub fn shade_water_lanes(
     water
 }
 
-/// A run of water points to shade together ([`shade_water_run`]): point `i` of `len`, as
-/// (world position m, normal of any length, foam in [0, 1]), and the unresolved slope variance of
-/// a batch of them (given their positions and unit normals, for a run that computes it).
+/// A run of water points to shade together ([`shade_water_run`]): point `i` of `len`, with its
+/// world position (m), normal (any length), foam in [0, 1] and unresolved slope variance (>= 0).
 pub trait WaterRun: Sync {
     /// Number of points.
     fn len(&self) -> usize;
@@ -304,10 +303,17 @@ pub trait WaterRun: Sync {
         self.len() == 0
     }
     /// Point `i`, `i < len()`.
-    fn point(&self, i: usize) -> (Vec3, Vec3, f32);
-    /// Unresolved slope variance (0: none) of the batch whose lane `l` is point `first + l` for
-    /// `l < live` and point `first` beyond, at `position` with unit `normal`.
-    fn unresolved(&self, first: usize, live: usize, position: Vec3Lanes, normal: Vec3Lanes) -> Lanes;
+    fn point(&self, i: usize) -> SurfaceVarying;
+}
+
+impl WaterRun for &[SurfaceVarying] {
+    fn len(&self) -> usize {
+        <[SurfaceVarying]>::len(self)
+    }
+    #[inline(always)]
+    fn point(&self, i: usize) -> SurfaceVarying {
+        self[i]
+    }
 }
 
 /// Shades every point of `run` into `out` (as many), a batch at a time through
@@ -335,16 +341,16 @@ fn shade_water_run_lanes(env: &Environment, look: &WaterLook, lobe: Lobe, run: &
     for (start, out) in (0..n).step_by(crate::math::LANES).zip(out[..n].chunks_mut(crate::math::LANES)) {
         let live = out.len();
         // Lanes past the run repeat its first point of the batch and are dropped.
-        let (mut position, mut normal, mut foam) =
-            (Vec3Lanes::splat(Vec3::ZERO), Vec3Lanes::splat(Vec3::ZERO), Lanes::splat(0.0));
+        let (mut position, mut normal) = (Vec3Lanes::splat(Vec3::ZERO), Vec3Lanes::splat(Vec3::ZERO));
+        let (mut foam, mut unresolved) = (Lanes::splat(0.0), Lanes::splat(0.0));
         for i in 0..crate::math::LANES {
-            let (p, n, f) = run.point(start + if i < live { i } else { 0 });
-            position.set_lane(i, p);
-            normal.set_lane(i, n);
-            foam.0[i] = f;
+            let p = run.point(start + if i < live { i } else { 0 });
+            position.set_lane(i, p.position);
+            normal.set_lane(i, p.normal);
+            foam.0[i] = p.foam;
+            unresolved.0[i] = p.unresolved;
         }
         let normal = normal.normalize_or(Vec3::Y);
-        let unresolved = run.unresolved(start, live, position, normal);
         let c = shade_water_lanes(env, look, lobe, &WaterPoints { position, normal, foam, unresolved }, live);
         for (i, o) in out.iter_mut().enumerate() {
             *o = c.lane(i);
