@@ -44,13 +44,7 @@ pub fn draw(fb: &mut Framebuffer, frame: &FrameContext, terrain: &TerrainBody, d
     let shader = TerrainShader { env: &frame.env, material: &terrain.material };
     draw.draw(
         fb,
-        ShadedMesh {
-            positions: &land.positions,
-            normals: &land.normals,
-            foam: None,
-            unresolved: None,
-            indices: &land.indices,
-        },
+        ShadedMesh::plain(&land.positions, &land.normals, &land.indices),
         &|p| clip_from_world * Vec4::from((p, 1.0)),
         Shading::Gouraud,
         &shader,

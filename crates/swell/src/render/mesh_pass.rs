@@ -112,13 +112,7 @@ impl MeshRenderer {
         let shader = MeshLightShader { light, to_light: -light.dir.normalize() };
         self.draw.draw(
             fb,
-            ShadedMesh {
-                positions: &mesh.positions,
-                normals: &mesh.normals,
-                foam: None,
-                unresolved: None,
-                indices: &mesh.indices,
-            },
+            ShadedMesh::plain(&mesh.positions, &mesh.normals, &mesh.indices),
             &|p| clip_from_world * Vec4::from((p, 1.0)),
             shading,
             &shader,

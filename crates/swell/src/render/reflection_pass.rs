@@ -109,11 +109,6 @@ pub fn draw<'a>(
         }
         _ => &mesh.indices[..],
     };
-    draw.redraw(
-        image,
-        ShadedMesh { positions: &mesh.positions, normals: &mesh.normals, foam: None, unresolved: None, indices },
-        &mirrored,
-        &shader,
-    );
+    draw.redraw(image, ShadedMesh::plain(&mesh.positions, &mesh.normals, indices), &mirrored, &shader);
     Some(ReflectionMap::new(image, camera, clip_from_world))
 }

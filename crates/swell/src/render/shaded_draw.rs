@@ -79,6 +79,13 @@ pub(crate) struct ShadedMesh<'a> {
     pub indices: &'a [u32],
 }
 
+impl<'a> ShadedMesh<'a> {
+    /// A mesh without foam or unresolved slopes (terrain, far land, an OBJ model).
+    pub fn plain(positions: &'a [Vec3], normals: &'a [Vec3], indices: &'a [u32]) -> Self {
+        Self { positions, normals, foam: None, unresolved: None, indices }
+    }
+}
+
 /// The vertex buffers and draw scratch of one shaded mesh, kept between frames so steady-state
 /// frames do not allocate. One per pass: [`ShadedDraw::redraw`] reuses what the last draw lit.
 #[derive(Default)]

@@ -33,13 +33,7 @@ pub fn draw(fb: &mut Framebuffer, frame: &FrameContext, terrain: &TerrainBody, d
     let shader = TerrainShader { env: &frame.env, material: &terrain.material };
     draw.draw(
         fb,
-        ShadedMesh {
-            positions: &mesh.positions,
-            normals: &mesh.normals,
-            foam: None,
-            unresolved: None,
-            indices: &mesh.indices,
-        },
+        ShadedMesh::plain(&mesh.positions, &mesh.normals, &mesh.indices),
         &|p| clip_from_world * Vec4::from((p, 1.0)),
         terrain.material.shading,
         &shader,
