@@ -428,7 +428,7 @@ fn an_aligned_mesh_reads_the_samples_the_bilinear_path_would_interpolate() {
         for (idx, p) in pos.iter().enumerate().step_by(13) {
             let r = grid.rest_position(idx % 41, idx / 41);
             let f = o.fields_at(r.x, r.y);
-            assert!((p.y - f[0]).abs() < 1e-4 && (p.x - r.x - f[1]).abs() < 1e-4, "stride {stride}: {p} vs {f:?}");
+            assert!((p.y - f[0]).abs() < 1e-5 && (p.x - r.x - f[1]).abs() < 1e-5, "stride {stride}: {p} vs {f:?}");
         }
     }
     let off = GridSpec::new(Vec2::new(-6.3, 10.0), Vec2::splat(80.0), 40, 40).unwrap();
