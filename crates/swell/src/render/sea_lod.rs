@@ -11,9 +11,9 @@
 //! the waves shorter than twice the larger of its footprint and the ring's spacing
 //! ([`FootprintFilter::variance`], computed at the vertices and interpolated like the normals:
 //! it varies smoothly with distance, and per pixel it was a quarter of the `sea`'s water
-//! shading; images differ by at most 3 levels in a few thousand pixels). The scaling treats all waves alike (a long swell far out loses
-//! tilt with the short waves); per-wave removal from the geometry is left for later. The flat far
-//! field beyond the rings takes the whole variance (`far_field_pass.rs`).
+//! shading). The scaling treats all waves alike (a long swell far out loses tilt with the short
+//! waves); per-wave removal from the geometry is left for later. The flat far field beyond the
+//! rings takes the whole variance (`far_field_pass.rs`).
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;

@@ -84,6 +84,29 @@ impl<'a> ShadedMesh<'a> {
     pub fn plain(positions: &'a [Vec3], normals: &'a [Vec3], indices: &'a [u32]) -> Self {
         Self { positions, normals, foam: None, unresolved: None, indices }
     }
+
+    /// Foam coverage of vertex `i` (0 where the mesh has none).
+    #[inline]
+    fn foam_at(&self, i: usize) -> f32 {
+        self.foam.map_or(0.0, |f| f[i])
+    }
+
+    /// Unresolved slope variance of vertex `i` (0 where the mesh has none).
+    #[inline]
+    fn unresolved_at(&self, i: usize) -> f32 {
+        self.unresolved.map_or(0.0, |u| u[i])
+    }
+
+    /// Vertex `i` as a surface point.
+    #[inline]
+    fn point(&self, i: usize) -> SurfaceVarying {
+        SurfaceVarying {
+            position: self.positions[i],
+            normal: self.normals[i],
+            foam: self.foam_at(i),
+            unresolved: self.unresolved_at(i),
+        }
+    }
 }
 
 /// The vertex buffers and draw scratch of one shaded mesh, kept between frames so steady-state
@@ -117,8 +140,6 @@ impl ShadedDraw {
         shader: &S,
     ) {
         self.shading = shading;
-        let foam = |i: usize| mesh.foam.map_or(0.0, |f| f[i]);
-        let unresolved = |i: usize| mesh.unresolved.map_or(0.0, |u| u[i]);
         let n = mesh.positions.len();
         match shading {
             Shading::Flat => {
@@ -139,8 +160,9 @@ impl ShadedDraw {
                                 SurfaceVarying {
                                     position: (a + b + d) / 3.0,
                                     normal: (b - a).cross(d - a).normalize_or(Vec3::Y),
-                                    foam: (foam(i) + foam(j) + foam(k)) / 3.0,
-                                    unresolved: (unresolved(i) + unresolved(j) + unresolved(k)) / 3.0,
+                                    foam: (mesh.foam_at(i) + mesh.foam_at(j) + mesh.foam_at(k)) / 3.0,
+                                    unresolved: (mesh.unresolved_at(i) + mesh.unresolved_at(j) + mesh.unresolved_at(k))
+                                        / 3.0,
                                 }
                             })
                             .collect();
@@ -160,11 +182,8 @@ impl ShadedDraw {
             Shading::Phong | Shading::BlinnPhong => {
                 self.surface.resize(n, ClipVertex::default());
                 self.surface.par_iter_mut().enumerate().for_each(|(i, cv)| {
-                    let (p, n) = (mesh.positions[i], mesh.normals[i]);
-                    *cv = ClipVertex {
-                        position: clip(p),
-                        varying: SurfaceVarying { position: p, normal: n, foam: foam(i), unresolved: unresolved(i) },
-                    };
+                    let varying = mesh.point(i);
+                    *cv = ClipVertex { position: clip(varying.position), varying };
                 });
                 self.draw_surface_pixels(fb, mesh, shader);
             }
@@ -225,15 +244,7 @@ impl ShadedDraw {
             let base = block * SHADE_TASK;
             let lit: Vec<usize> =
                 (base..base + colored.len()).filter(|&i| visible[i].load(Ordering::Relaxed)).collect();
-            let points: Vec<SurfaceVarying> = lit
-                .iter()
-                .map(|&i| SurfaceVarying {
-                    position: mesh.positions[i],
-                    normal: mesh.normals[i],
-                    foam: mesh.foam.map_or(0.0, |f| f[i]),
-                    unresolved: mesh.unresolved.map_or(0.0, |u| u[i]),
-                })
-                .collect();
+            let points: Vec<SurfaceVarying> = lit.iter().map(|&i| mesh.point(i)).collect();
             let mut colors = vec![Vec3::ZERO; points.len()];
             shader.shade_points(&points, &mut colors);
             for (&i, c) in lit.iter().zip(colors) {

@@ -1,6 +1,6 @@
 //! Draws the water surface with its material's shading model, through the one shaded-draw path:
-//! the water's optics ([`crate::shading::shade_water`]: Fresnel sky and terrain reflection, refraction to the
-//! bottom with absorption, sun glitter, foam) are its [`SurfaceShader`].
+//! the water's optics ([`crate::shading::shade_water`]: Fresnel sky and terrain reflection,
+//! refraction to the bottom with absorption, sun glitter, foam) are its [`SurfaceShader`].
 
 use glam::{Vec3, Vec4};
 
@@ -14,9 +14,9 @@ use crate::shading::{
     SurfaceVarying, WaterLook, WaterRun,
 };
 
-/// Water as [`crate::shading::shade_water`] sees it, with the specular lobe of its shading model; where a point
-/// carries unresolved slope variance (the unbounded sea's mesh does, `render/sea_lod.rs`), that
-/// variance is shaded statistically ([`shade_water_filtered`]).
+/// Water as [`crate::shading::shade_water`] sees it, with the specular lobe of its shading
+/// model; where a point carries unresolved slope variance (the unbounded sea's mesh does,
+/// `render/sea_lod.rs`), that variance is shaded statistically ([`shade_water_filtered`]).
 struct WaterShader<'a> {
     env: &'a Environment<'a>,
     look: WaterLook<'a>,
