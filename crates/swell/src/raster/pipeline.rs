@@ -149,10 +149,11 @@ fn for_each_band(target: &mut Framebuffer, draw: impl Fn(Band, &mut [Vec3], &mut
 }
 
 /// [`draw_with`] with deferred shading: the bands are drawn first, keeping only the nearest
-/// fragment of each pixel, then `shade` colours each covered pixel once, a row's run of covered
-/// pixels per call (`fragments` left to right, `colors` as many). The image is bit-identical to
-/// [`draw_with`] with a shader that shades one fragment the same way; per-pixel shading costs what
-/// the visible pixels cost, not every fragment that passed the depth test on the way.
+/// fragment of each pixel, then `shade` colours each covered pixel once, a row's covered pixels
+/// per call (their perspective-correct varyings left to right, and as many colours to write).
+/// The image is bit-identical to [`draw_with`] with a shader that shades one fragment's varying
+/// the same way; per-pixel shading costs what the visible pixels cost, not every fragment that
+/// passed the depth test on the way.
 pub fn draw_deferred_with<V, S>(
     scratch: &mut DrawScratch<V>,
     target: &mut Framebuffer,
@@ -162,7 +163,7 @@ pub fn draw_deferred_with<V, S>(
     shade: &S,
 ) where
     V: Varying,
-    S: Fn(&[Fragment<V>], &mut [Vec3]) + Sync,
+    S: Fn(&[V], &mut [Vec3]) + Sync,
 {
     if !project_and_bin(scratch, target, vertices, indices, cull) {
         return;
@@ -209,7 +210,10 @@ fn raster_band<V: Varying, S>(
         depth,
         |chunk, triangle| corner_varyings(chunk, triangle, vertices),
         #[inline(always)]
-        |i, corners, at| color[i] = shader(&fragment_at(at.tri, corners, at.cov.linear, at.cov.x, at.cov.y)),
+        |i, corners, at| {
+            let varying = varying_at(at.tri, corners, at.cov.linear);
+            color[i] = shader(&Fragment { varying, primitive: at.tri.primitive, x: at.cov.x, y: at.cov.y })
+        },
     );
 }
 
@@ -238,17 +242,16 @@ fn corner_varyings<V: Varying>(chunk: &Chunk<V>, triangle: u32, vertices: &[Clip
     [varying_of(a), varying_of(b), varying_of(d)]
 }
 
-/// The fragment of triangle `tri` (whose corners carry `corners`) at pixel (`x`, `y`) with linear
-/// weights `linear`: its perspective-correct varyings. Both draws build fragments here, so they
-/// give bit-identical varyings.
+/// The perspective-correct varyings of triangle `tri` (whose corners carry `corners`) at the pixel
+/// with linear weights `linear`. Both draws interpolate here, so they give bit-identical
+/// varyings.
 #[inline(always)]
-fn fragment_at<V: Varying>(tri: &SetupTriangle<()>, corners: &[V; 3], linear: [f32; 3], x: u32, y: u32) -> Fragment<V> {
-    let varying = if std::mem::size_of::<V>() != 0 {
+fn varying_at<V: Varying>(tri: &SetupTriangle<()>, corners: &[V; 3], linear: [f32; 3]) -> V {
+    if std::mem::size_of::<V>() != 0 {
         V::weighted(&corners[0], &corners[1], &corners[2], tri.perspective_weights(linear))
     } else {
         V::default()
-    };
-    Fragment { varying, primitive: tri.primitive, x, y }
+    }
 }
 
 /// Where a pixel of a band is covered: the chunk's index, the triangle (index and setup) and the
@@ -299,7 +302,8 @@ fn walk_band<V: Varying, T>(
 
 /// Like [`raster_band`], but each pixel is shaded once, after the whole band is drawn, with the
 /// varyings of its nearest fragment: no shading is spent on fragments a nearer one hides later.
-/// `shade` gets one row's covered pixels at a time, left to right, so it can shade them in batches.
+/// `shade` gets one row's covered pixels at a time, left to right, so it can shade them in batches;
+/// when they are one unbroken span (most rows of open water) it writes their colours in place.
 #[inline(never)]
 fn raster_band_deferred<V: Varying, S>(
     chunks: &[Chunk<V>],
@@ -310,10 +314,10 @@ fn raster_band_deferred<V: Varying, S>(
     scratch: &mut DeferredScratch<V>,
     shade: &S,
 ) where
-    S: Fn(&[Fragment<V>], &mut [Vec3]) + Sync,
+    S: Fn(&[V], &mut [Vec3]) + Sync,
 {
     let n = depth.len();
-    let DeferredScratch { hits, covered, fragments, colors } = scratch;
+    let DeferredScratch { hits, covered, varyings, columns, colors } = scratch;
     hits.resize(n, Hit::default());
     covered.clear();
     covered.resize(n, false);
@@ -327,11 +331,10 @@ fn raster_band_deferred<V: Varying, S>(
             covered[i] = true;
         },
     );
-    let y0 = band.index as u32 * BAND_ROWS;
     let row = band.row;
     for (r, (hits, covered)) in hits.chunks_exact(row).zip(covered.chunks_exact(row)).enumerate() {
-        fragments.clear();
-        let y = y0 + r as u32;
+        varyings.clear();
+        columns.clear();
         // Neighbouring pixels of a row mostly share their triangle (about 30 pixels each on the
         // unbounded sea): its record and its three corners' varyings are looked up once per run,
         // not per pixel (they are gathered from a vertex array of megabytes).
@@ -347,17 +350,21 @@ fn raster_band_deferred<V: Varying, S>(
                     (tri, corners)
                 }
             };
-            fragments.push(fragment_at(tri, &corners, hit.linear, x as u32, y));
+            varyings.push(varying_at(tri, &corners, hit.linear));
+            columns.push(x as u32);
         }
-        if fragments.is_empty() {
+        let (Some(&first), Some(&last)) = (columns.first(), columns.last()) else { continue };
+        let out = &mut color[r * row..(r + 1) * row];
+        if (last - first) as usize + 1 == columns.len() {
+            // One span: shaded straight into the row.
+            shade(varyings, &mut out[first as usize..=last as usize]);
             continue;
         }
         colors.clear();
-        colors.resize(fragments.len(), Vec3::ZERO);
-        shade(fragments, colors);
-        let out = &mut color[r * row..(r + 1) * row];
-        for (f, c) in fragments.iter().zip(colors.iter()) {
-            out[f.x as usize] = *c;
+        colors.resize(varyings.len(), Vec3::ZERO);
+        shade(varyings, colors);
+        for (&x, c) in columns.iter().zip(colors.iter()) {
+            out[x as usize] = *c;
         }
     }
 }
@@ -366,13 +373,15 @@ fn raster_band_deferred<V: Varying, S>(
 struct DeferredScratch<V> {
     hits: Vec<Hit>,
     covered: Vec<bool>,
-    fragments: Vec<Fragment<V>>,
+    /// A row's covered pixels: their varyings and columns, left to right.
+    varyings: Vec<V>,
+    columns: Vec<u32>,
     colors: Vec<Vec3>,
 }
 
 impl<V> Default for DeferredScratch<V> {
     fn default() -> Self {
-        Self { hits: Vec::new(), covered: Vec::new(), fragments: Vec::new(), colors: Vec::new() }
+        Self { hits: Vec::new(), covered: Vec::new(), varyings: Vec::new(), columns: Vec::new(), colors: Vec::new() }
     }
 }
 

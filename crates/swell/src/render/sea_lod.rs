@@ -9,13 +9,15 @@
 //! `sqrt(1 - u)`, `u` the fraction of the variance unresolved at that vertex, so the geometric
 //! normals carry the resolved variance), and each pixel adds back, as roughness, the variance of
 //! the waves shorter than twice the larger of its footprint and the ring's spacing
-//! ([`FootprintFilter::variance`], computed at the vertices and interpolated like the normals:
+//! ([`FootprintFilter::variance_lanes`], computed at the vertices and interpolated like the normals:
 //! it varies smoothly with distance, and per pixel it was a quarter of the `sea`'s water
 //! shading). The scaling treats all waves alike (a long swell far out loses tilt with the short
 //! waves); per-wave removal from the geometry is left for later. The flat far field beyond the
 //! rings takes the whole variance (`far_field_pass.rs`).
 
 use glam::{Vec2, Vec3};
+
+use crate::math::{Isa, Lanes, Vec3Lanes, LANES};
 use rayon::prelude::*;
 
 use crate::mesh::Clipmap;
@@ -27,7 +29,7 @@ use crate::shading::UnresolvedSlopes;
 pub struct SeaLod {
     /// The rings and the (levels, ring cells, spacing) they were built with.
     clipmap: Option<((u32, u32, u32), Clipmap)>,
-    /// Slope variance each vertex's pixel leaves unresolved ([`FootprintFilter::variance`]).
+    /// Slope variance each vertex's pixel leaves unresolved ([`FootprintFilter::variance_lanes`]).
     unresolved: Vec<f32>,
 }
 
@@ -68,16 +70,12 @@ impl SeaLod {
         self.unresolved.resize(clipmap.positions.len(), 0.0);
         if total > 0.0 {
             let Clipmap { positions, normals, .. } = &mut *clipmap;
-            (normals, &mut self.unresolved).into_par_iter().zip(positions.par_iter()).for_each(|((n, u), &p)| {
-                // The share of the slope variance this vertex's pixel resolves, and the tilt that
-                // leaves the geometric normals with it: slope (dh/dx, dh/dz) = -(n.x, n.z) / n.y,
-                // scaled by its square root. The rest goes to the shading.
-                *u = filter.variance(p, *n);
-                let keep = (1.0 - *u / total).max(0.0).sqrt();
-                if keep < 1.0 {
-                    let y = n.y.abs().max(1e-3);
-                    *n = Vec3::new(n.x * keep, y, n.z * keep).normalize_or(Vec3::Y);
-                }
+            let tasks = normals.par_chunks_mut(VERTEX_TASK).zip(self.unresolved.par_chunks_mut(VERTEX_TASK));
+            tasks.zip(positions.par_chunks(VERTEX_TASK)).for_each(|((n, u), p)| {
+                Isa::run_widest(
+                    #[inline(always)]
+                    || filter.move_to_shading(p, n, u, total),
+                )
             });
         }
         Some(SeaMesh { clipmap, unresolved: &self.unresolved })
@@ -93,6 +91,9 @@ impl SeaLod {
 /// the cut itself), and with the light entering the water, 3 gave 6.07 for the ocean and 3.5
 /// gives 5.70 (sea 2.06).
 const FOOTPRINT_WIDTH: f32 = 3.5;
+
+/// Vertices per parallel task of the footprint filter.
+const VERTEX_TASK: usize = 4096;
 
 /// How much slope variance each pixel of the unbounded sea leaves unresolved.
 #[derive(Clone, Copy, Debug)]
@@ -129,19 +130,46 @@ impl<'a> FootprintFilter<'a> {
         }
     }
 
-    /// Slope variance (both axes) the pixel showing world point `p` with mean normal `n` cannot
-    /// resolve: the waves shorter than twice the larger of its footprint (its width at that
-    /// distance, stretched by the grazing angle) and the ring's vertex spacing there.
-    #[inline]
+    /// [`Self::variance_lanes`] of one point.
+    #[cfg(test)]
     pub fn variance(&self, p: Vec3, n: Vec3) -> f32 {
-        let to_eye = self.eye - p;
+        self.variance_lanes(Vec3Lanes::splat(p), Vec3Lanes::splat(n)).0[0]
+    }
+
+    /// Slope variance (both axes) the pixel showing world point `p` with mean normal `n` cannot
+    /// resolve, for [`LANES`] points at once: the waves shorter than twice the larger of its
+    /// footprint (its width at that distance, stretched by the grazing angle) and the ring's
+    /// vertex spacing there.
+    #[inline(always)]
+    fn variance_lanes(&self, p: Vec3Lanes, n: Vec3Lanes) -> Lanes {
+        let to_eye = Vec3Lanes::splat(self.eye) - p;
         let distance = to_eye.length();
         let cos = (n.dot(to_eye) / distance.max(1e-6)).abs().max(0.05);
         let footprint = distance * self.pixel_angle / cos.sqrt();
         // Ring k covers Chebyshev radii [N/4, N/2] s_k about the centre: s_k <= 4 r / N.
-        let r = (Vec2::new(p.x, p.z) - self.center).abs().max_element();
+        let r = (p.x - self.center.x).abs().max((p.z - self.center.y).abs());
         let mesh = (4.0 * r / self.ring_cells).max(self.spacing);
-        self.slopes.unresolved(FOOTPRINT_WIDTH * footprint.max(mesh))
+        self.slopes.unresolved_lanes(footprint.max(mesh) * FOOTPRINT_WIDTH)
+    }
+
+    /// Moves the unresolved slopes of the vertices at `positions` from their `normals` to the
+    /// shading: `unresolved[i]` gets [`Self::variance_lanes`] and normal `i` keeps the resolved share
+    /// of the tilt, its slope (dh/dx, dh/dz) = -(n.x, n.z) / n.y scaled by the square root of
+    /// that share (of `total`, the whole spectrum's variance). [`LANES`] vertices at a time.
+    #[inline(always)]
+    fn move_to_shading(&self, positions: &[Vec3], normals: &mut [Vec3], unresolved: &mut [f32], total: f32) {
+        for ((p, n), u) in positions.chunks(LANES).zip(normals.chunks_mut(LANES)).zip(unresolved.chunks_mut(LANES)) {
+            // Lanes past the block repeat its first vertex and are dropped.
+            let at = |i: usize| if i < p.len() { i } else { 0 };
+            let normal = Vec3Lanes::from_fn(|i| n[at(i)]);
+            let variance = self.variance_lanes(Vec3Lanes::from_fn(|i| p[at(i)]), normal);
+            let keep = (1.0 - variance / total).max(0.0).sqrt();
+            let tilted = Vec3Lanes { x: normal.x * keep, y: normal.y.abs().max(1e-3), z: normal.z * keep };
+            let normal = keep.lt(1.0).select3(tilted.normalize_or(Vec3::Y), normal);
+            for (i, (n, u)) in n.iter_mut().zip(u.iter_mut()).enumerate() {
+                (*n, *u) = (normal.lane(i), variance.0[i]);
+            }
+        }
     }
 }
 

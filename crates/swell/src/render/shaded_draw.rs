@@ -23,7 +23,7 @@ use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use crate::raster::clip::view_outcode;
-use crate::raster::{draw_deferred_with, draw_with, ClipVertex, Cull, DrawScratch, Fragment, Framebuffer};
+use crate::raster::{draw_deferred_with, draw_with, ClipVertex, Cull, DrawScratch, Framebuffer};
 use crate::scene::Shading;
 use crate::shading::SurfaceVarying;
 
@@ -51,13 +51,12 @@ pub(crate) trait SurfaceShader: Sync {
     }
 
     /// Per-pixel shading of a run of pixels (one row's covered pixels, left to right): `out[i]`
-    /// gets the radiance of `pixels[i]`, whose interpolated normal is not yet unit length. The
-    /// default shades each with [`Self::shade`]; a shader may shade several at once instead, as long
-    /// as each pixel's colour depends on that pixel alone.
-    fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
-        for (f, o) in pixels.iter().zip(out.iter_mut()) {
-            let v = f.varying;
-            *o = self.shade(&SurfaceVarying { normal: v.normal.normalize_or(Vec3::Y), ..v });
+    /// gets the radiance of `pixels[i]`, interpolated across its triangle, whose normal is not
+    /// yet unit length. The default shades each with [`Self::shade`]; a shader may shade several
+    /// at once instead, as long as each pixel's colour depends on that pixel alone.
+    fn shade_pixels(&self, pixels: &[SurfaceVarying], out: &mut [Vec3]) {
+        for (v, o) in pixels.iter().zip(out.iter_mut()) {
+            *o = self.shade(&SurfaceVarying { normal: v.normal.normalize_or(Vec3::Y), ..*v });
         }
     }
 }

@@ -5,7 +5,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::math::{Lanes, Vec3Lanes, LANES};
+use crate::math::{Isa, Lanes, Vec3Lanes, LANES};
 use crate::raster::Framebuffer;
 use crate::scene::{Camera, SkyRadiance, SunDisc};
 
@@ -68,23 +68,19 @@ struct GradientRow<'a> {
 }
 
 impl GradientRow<'_> {
-    /// Writes the row's pixels left at the far plane (`depth` 1), with AVX2 where the CPU has
-    /// it: the same IEEE operations lane by lane either way (no fused multiply-add), so the image
-    /// does not depend on the CPU.
+    /// Writes the row's pixels left at the far plane (`depth` 1), compiled for the widest vector
+    /// instructions the CPU has ([`Isa`]): the same IEEE operations lane by lane whichever, so the
+    /// image does not depend on the CPU.
     fn fill(&self, colors: &mut [Vec3], depth: &[f32]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2, checked just above.
-            unsafe { self.fill_avx2(colors, depth) };
-            return;
-        }
-        self.fill_lanes(colors, depth);
+        self.fill_with(Isa::widest(), colors, depth);
     }
 
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn fill_avx2(&self, colors: &mut [Vec3], depth: &[f32]) {
-        self.fill_lanes(colors, depth);
+    /// [`Self::fill`] compiled for `isa`.
+    fn fill_with(&self, isa: Isa, colors: &mut [Vec3], depth: &[f32]) {
+        isa.run(
+            #[inline(always)]
+            || self.fill_lanes(colors, depth),
+        );
     }
 
     #[inline(always)]
@@ -203,5 +199,32 @@ mod tests {
             }
         }
         assert!(lit > 0, "the sun (or its glow) is in view");
+    }
+
+    /// The gradient sky's rows give the same bits whichever vector instructions fill them.
+    #[test]
+    fn isa_builds_agree() {
+        let camera = Camera { eye: Vec3::new(0.0, 2.0, 0.0), target: Vec3::new(0.3, 1.0, -10.0), ..Camera::default() };
+        let sky = Sky { sun_elevation_deg: 8.0, ..Sky::default() };
+        let table = SkyRadiance::new(&sky);
+        assert!(!table.is_tabulated(), "the gradient sky is the lane loop");
+        let sun = sky.sun(&[]);
+        let rays = SkyRays::new(&camera, 16.0 / 9.0);
+        // 1000 columns: whole batches and a partial one; every third pixel covered by geometry.
+        let depth: Vec<f32> = (0..1000).map(|x| if x % 3 == 0 { 0.5 } else { 1.0 }).collect();
+        for ndc_y in [-0.9, -0.1, 0.0, 0.05, 0.7] {
+            let row = GradientRow { rays: rays.row(ndc_y), width: 1000, sky: &table, sun: sun.as_ref() };
+            let fill = |isa: Isa| {
+                let mut colors = vec![Vec3::splat(-1.0); 1000];
+                row.fill_with(isa, &mut colors, &depth);
+                colors
+            };
+            let portable = fill(Isa::Portable);
+            assert!(portable.iter().zip(&depth).all(|(c, &d)| (d < 1.0) == (*c == Vec3::splat(-1.0))));
+            for isa in Isa::ALL.into_iter().filter(|isa| isa.is_available()) {
+                let bits = |v: &[Vec3]| v.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+                assert_eq!(bits(&fill(isa)), bits(&portable), "{isa:?} at ndc y {ndc_y}");
+            }
+        }
     }
 }

@@ -6,12 +6,11 @@ use glam::{Vec3, Vec4};
 
 use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use super::FrameContext;
-use crate::raster::Fragment;
 use crate::raster::Framebuffer;
 use crate::scene::{TerrainBody, WaterBody};
 use crate::shading::{
     shade_water_filtered, shade_water_run, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed,
-    SurfaceVarying, WaterLook, WaterRun,
+    SurfaceVarying, WaterLook,
 };
 
 /// Water as [`crate::shading::shade_water`] sees it, with the specular lobe of its shading
@@ -30,26 +29,13 @@ impl SurfaceShader for WaterShader<'_> {
 
     /// A row's pixels many at a time ([`shade_water_run`]), each with the unresolved slope
     /// variance interpolated from the mesh's vertices (the unbounded sea's; 0 on a patch).
-    fn shade_pixels(&self, pixels: &[Fragment<SurfaceVarying>], out: &mut [Vec3]) {
-        shade_water_run(self.env, &self.look, self.lobe, &Pixels(pixels), out);
+    fn shade_pixels(&self, pixels: &[SurfaceVarying], out: &mut [Vec3]) {
+        shade_water_run(self.env, &self.look, self.lobe, &pixels, out);
     }
 
     /// Many vertices or faces at a time ([`shade_water_run`]).
     fn shade_points(&self, points: &[SurfaceVarying], out: &mut [Vec3]) {
         shade_water_run(self.env, &self.look, self.lobe, &points, out);
-    }
-}
-
-/// A row's run of water pixels, as the rasterizer interpolated them.
-struct Pixels<'a>(&'a [Fragment<SurfaceVarying>]);
-
-impl WaterRun for Pixels<'_> {
-    fn len(&self) -> usize {
-        self.0.len()
-    }
-    #[inline(always)]
-    fn point(&self, i: usize) -> SurfaceVarying {
-        self.0[i].varying
     }
 }
 

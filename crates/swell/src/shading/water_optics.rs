@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 
 use super::slope_variance::{mean_fresnel_lanes, spread_normals_lanes, widened_lobe_lanes};
 use super::{fresnel_dielectric, Environment, Lobe, ReflectionMap, SurfaceVarying};
-use crate::math::{fast_pow, Lanes, Vec3Lanes};
+use crate::math::{fast_pow, Isa, Lanes, Vec3Lanes};
 use crate::scene::{FoamPattern, Light, TerrainBody, Texture, WaterMaterial};
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
@@ -317,22 +317,25 @@ impl WaterRun for &[SurfaceVarying] {
 }
 
 /// Shades every point of `run` into `out` (as many), a batch at a time through
-/// [`shade_water_lanes`], with AVX2 where the CPU has it: the same IEEE operations lane by lane
-/// either way (Rust fuses no multiply-add on its own), so the image does not depend on the CPU.
+/// [`shade_water_lanes`] compiled for the widest vector instructions the CPU has ([`Isa`]): the
+/// same IEEE operations lane by lane whichever, so the image does not depend on the CPU.
 pub fn shade_water_run(env: &Environment, look: &WaterLook, lobe: Lobe, run: &impl WaterRun, out: &mut [Vec3]) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU supports AVX2, checked just above.
-        unsafe { shade_water_run_avx2(env, look, lobe, run, out) };
-        return;
-    }
-    shade_water_run_lanes(env, look, lobe, run, out);
+    shade_water_run_with(Isa::widest(), env, look, lobe, run, out);
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn shade_water_run_avx2(env: &Environment, look: &WaterLook, lobe: Lobe, run: &impl WaterRun, out: &mut [Vec3]) {
-    shade_water_run_lanes(env, look, lobe, run, out);
+/// [`shade_water_run`] compiled for `isa` (the baseline where the CPU lacks it).
+pub(crate) fn shade_water_run_with(
+    isa: Isa,
+    env: &Environment,
+    look: &WaterLook,
+    lobe: Lobe,
+    run: &impl WaterRun,
+    out: &mut [Vec3],
+) {
+    isa.run(
+        #[inline(always)]
+        || shade_water_run_lanes(env, look, lobe, run, out),
+    );
 }
 
 #[inline(always)]
@@ -412,10 +415,16 @@ fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, coverage:
     let Some(pattern) = look.foam else { return coverage };
     let m = look.material;
     let per_tile = 1.0 / m.foam_scale;
-    let cells = pattern.alpha_lanes(p.x * per_tile, p.z * per_tile, coverage, m.foam_feather);
     let tiles_away = (Vec3Lanes::splat(env.eye) - p).length() * per_tile;
     let fade = ((tiles_away - FOAM_DETAIL_START_TILES) * (1.0 / FOAM_DETAIL_FADE_TILES)).max(0.0).min(1.0);
-    cells + (coverage - cells) * fade
+    // Most of an open sea's pixels are far enough for the coverage alone: the pattern (a Worley
+    // look-up per lane) is evaluated only for batches that show some of it.
+    if !fade.lt(1.0).any() {
+        return coverage;
+    }
+    let cells = pattern.alpha_lanes(p.x * per_tile, p.z * per_tile, coverage, m.foam_feather);
+    // As a weighted sum, exactly the coverage where the fade is complete, as when skipped.
+    cells * (1.0 - fade) + coverage * fade
 }
 
 /// [`fresnel_dielectric`] per lane.
@@ -677,5 +686,62 @@ mod tests {
         // What was at x = 1 at t = 0 is at x = 1 + 2 * 1.5 at t = 1.5.
         assert!((at(0.0, 1.0) - at(1.5, 4.0)).length() < 1e-4);
         assert!((at(0.0, 1.0) - at(1.5, 1.0)).length() > 1e-4);
+    }
+
+    /// Water shaded through every vector build this CPU has gives the same bits: rough and
+    /// smooth points, foam with its pattern near and far, a point light, a textured body over a
+    /// seabed and haze, in runs that end mid-batch.
+    #[test]
+    fn isa_builds_agree() {
+        let lights = [
+            Light::Directional {
+                direction: Vec3::new(0.4, -0.5, -1.0),
+                color: Vec3::new(1.0, 0.9, 0.8),
+                intensity: 3.0,
+            },
+            Light::Point { position: Vec3::new(5.0, 8.0, -20.0), color: Vec3::ONE, intensity: 40.0 },
+        ];
+        let sky = Sky { haze_distance: 2000.0, ..Sky::default() };
+        let mut env = env(&lights, &sky);
+        env.eye = Vec3::new(0.0, 6.0, 0.0);
+        let material = WaterMaterial {
+            flow_velocity: Vec2::new(0.5, 0.2),
+            texture_scale: 4.0,
+            texture_mix: 0.3,
+            ..WaterMaterial::default()
+        };
+        let texture = Texture::procedural_water(material.color);
+        let pattern = FoamPattern::procedural();
+        let bottom = FlatBottom { height: -3.0, albedo: Vec3::new(0.8, 0.7, 0.5) };
+        let look = WaterLook::new(&material, &bottom, Some(&texture), 1.25).with_foam(Some(&pattern));
+        // A deterministic scatter of points from 1 m to 2 km away, some tilted past the eye.
+        let points: Vec<SurfaceVarying> = (0..203u32)
+            .map(|k| {
+                let h = |s: u32| {
+                    ((k.wrapping_mul(2_654_435_761) ^ s).wrapping_mul(2_246_822_519) >> 8) as f32 / 16_777_216.0
+                };
+                let distance = 1.0 + 2000.0 * h(1) * h(1);
+                let angle = std::f32::consts::TAU * h(2);
+                SurfaceVarying {
+                    position: Vec3::new(distance * angle.cos(), 2.0 * h(3) - 1.0, distance * angle.sin()),
+                    normal: Vec3::new(h(4) - 0.5, 0.3 + h(5), h(6) - 0.5) * (0.5 + h(7)),
+                    foam: if k % 4 == 0 { 0.0 } else { h(8) },
+                    unresolved: if k % 3 == 0 { 0.0 } else { 0.05 * h(9) },
+                }
+            })
+            .collect();
+        for lobe in [Lobe::BlinnPhong, Lobe::Phong] {
+            let shade = |isa: Isa, n: usize| {
+                let mut out = vec![Vec3::ZERO; n];
+                shade_water_run_with(isa, &env, &look, lobe, &&points[..n], &mut out);
+                out.iter().flat_map(|c| c.to_array().map(f32::to_bits)).collect::<Vec<_>>()
+            };
+            for n in [1, 64, 203] {
+                let portable = shade(Isa::Portable, n);
+                for isa in Isa::ALL.into_iter().filter(|isa| isa.is_available()) {
+                    assert_eq!(shade(isa, n), portable, "{isa:?}, {n} points, {lobe:?}");
+                }
+            }
+        }
     }
 }

@@ -23,7 +23,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::wave_model::SurfacePoint;
-use crate::math::{fast_sin_cos, GridSpec};
+use crate::math::{fast_sin_cos, GridSpec, Isa};
 
 /// Most waves one sum holds; per-frame phases live on the stack in an array of this size.
 pub const MAX_TROCHOIDAL_WAVES: usize = 64;
@@ -142,31 +142,14 @@ impl TrochoidalSum {
         });
     }
 
-    /// One row, with the widest vector instructions this CPU has. The AVX2 and baseline builds of
-    /// the same code give bit-identical results: Rust never fuses a multiply and an add on its own,
-    /// and every lane does the same IEEE operations in the same order.
+    /// One row, compiled for the widest vector instructions this CPU has ([`Isa`]). Every build of
+    /// the same code gives bit-identical results: Rust never fuses a multiply and an add on its
+    /// own, and every lane does the same IEEE operations in the same order.
     fn evaluate_row(&self, grid: &GridSpec, j: usize, z: f32, phases: &Phases, prow: &mut [Vec3], nrow: &mut [Vec3]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2, checked just above.
-            unsafe { self.evaluate_row_avx2(grid, j, z, phases, prow, nrow) };
-            return;
-        }
-        self.evaluate_row_generic(grid, j, z, phases, prow, nrow);
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn evaluate_row_avx2(
-        &self,
-        grid: &GridSpec,
-        j: usize,
-        z: f32,
-        phases: &Phases,
-        prow: &mut [Vec3],
-        nrow: &mut [Vec3],
-    ) {
-        self.evaluate_row_generic(grid, j, z, phases, prow, nrow);
+        Isa::run_widest(
+            #[inline(always)]
+            || self.evaluate_row_generic(grid, j, z, phases, prow, nrow),
+        );
     }
 
     #[inline(always)]
