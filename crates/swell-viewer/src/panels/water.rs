@@ -105,6 +105,7 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
         changed |= fields::optional_text(ui, "foam texture (procedural or a file)", &mut m.foam_texture, "procedural");
         changed |= fields::number(ui, "foam scale", &mut m.foam_scale, 0.05, " m");
         changed |= fields::number(ui, "foam feather", &mut m.foam_feather, 0.005, "");
+        changed |= fields::number(ui, "foam streaks (along the wind)", &mut m.foam_streak, 0.05, "");
         changed |= fields::color(ui, "scatter colour", &mut m.scatter_color);
         changed |= fields::number(ui, "scatter strength", &mut m.scatter_strength, 0.01, "");
         changed |= fields::number(ui, "scatter height", &mut m.scatter_height, 0.05, " m");
@@ -128,6 +129,7 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
             "foam_texture",
             "foam_scale",
             "foam_feather",
+            "foam_streak",
             "scatter_color",
             "scatter_strength",
             "scatter_height",

@@ -64,8 +64,17 @@ pub fn draw(
     };
     let look = WaterLook::new(material, seabed, water.texture.as_ref(), frame.env.time)
         .with_reflection(reflection)
-        .with_foam(Some(&water.foam_pattern));
+        .with_foam(Some(&water.foam_pattern))
+        .with_foam_streaks(wind_in_world(water), material.foam_streak);
     let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading) };
     let clip_from_world = frame.clip_from_world;
     draw.draw(fb, mesh, &|p| clip_from_world * Vec4::from((p, 1.0)), material.shading, &shader);
+}
+
+/// The wind of `water`'s model ([`crate::water::WaveModel::wind_direction`]) turned into the
+/// world by the patch's placement (x, z), if the model has one.
+fn wind_in_world(water: &WaterBody) -> Option<glam::Vec2> {
+    let d = water.model.wind_direction()?;
+    let w = water.placement.to_world(Vec3::new(d.x, 0.0, d.y)) - water.placement.to_world(Vec3::ZERO);
+    Some(glam::Vec2::new(w.x, w.z))
 }

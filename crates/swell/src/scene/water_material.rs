@@ -52,6 +52,11 @@ pub struct WaterMaterial {
     /// Width of the soft edge of foam cells, as a fraction of the pattern's range, in
     /// [0.01, 1]: small gives crisp lace, 1 a soft blend. Default 0.15.
     pub foam_feather: f32,
+    /// How many times longer than wide the foam pattern's cells are drawn along the wind, in
+    /// [1, 16]: foam torn off crests is drawn out downwind into streaks. 1 keeps them round;
+    /// water whose model has no wind ([`crate::water::WaveModel::wind_direction`]) keeps them
+    /// round whatever this is. Default 3.
+    pub foam_streak: f32,
     /// Linear RGB colour of light scattered through thin, backlit crests (subsurface scattering),
     /// components in [0, 1]. Default [0.05, 0.32, 0.26] (the green of sunlit crests).
     pub scatter_color: Vec3,
@@ -91,6 +96,7 @@ impl Default for WaterMaterial {
             foam_texture: None,
             foam_scale: 6.0,
             foam_feather: 0.15,
+            foam_streak: 3.0,
             scatter_color: Vec3::new(0.05, 0.32, 0.26),
             scatter_strength: 4.0,
             scatter_height: 2.5,
@@ -117,6 +123,7 @@ impl WaterMaterial {
         unit_rgb("scatter_color", self.scatter_color)?;
         check_range(&format!("{key}.foam_scale"), self.foam_scale, 0.1, 1000.0)?;
         check_range(&format!("{key}.foam_feather"), self.foam_feather, 0.01, 1.0)?;
+        check_range(&format!("{key}.foam_streak"), self.foam_streak, 1.0, 16.0)?;
         check_range(&format!("{key}.scatter_strength"), self.scatter_strength, 0.0, 10.0)?;
         check_range(&format!("{key}.scatter_height"), self.scatter_height, 0.01, 100.0)?;
         check_range(&format!("{key}.refractive_index"), self.refractive_index, 1.0, 3.0)?;
@@ -208,10 +215,13 @@ mod tests {
     #[test]
     fn foam_and_scattering_keys_are_checked_with_their_path_value_and_range() {
         type Spoil = fn(&mut WaterMaterial);
-        let bad: [(&str, Spoil); 8] = [
+        let bad: [(&str, Spoil); 11] = [
             ("water.material.foam_scale", |m| m.foam_scale = 0.0),
             ("water.material.foam_feather", |m| m.foam_feather = 1.5),
             ("water.material.foam_feather", |m| m.foam_feather = f32::NAN),
+            ("water.material.foam_streak", |m| m.foam_streak = 0.5),
+            ("water.material.foam_streak", |m| m.foam_streak = 17.0),
+            ("water.material.foam_streak", |m| m.foam_streak = f32::INFINITY),
             ("water.material.scatter_strength", |m| m.scatter_strength = -1.0),
             ("water.material.scatter_height", |m| m.scatter_height = 0.0),
             ("water.material.scatter_color[1]", |m| m.scatter_color.y = 2.0),

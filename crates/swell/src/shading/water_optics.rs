@@ -68,6 +68,9 @@ pub struct WaterLook<'a> {
     pub reflection: Option<&'a ReflectionMap<'a>>,
     /// The structure foam shows ([`FoamPattern`]); `None` blends towards foam by its coverage.
     pub foam: Option<&'a FoamPattern>,
+    /// Foam streaks: the unit world direction (x, z) the wind blows towards and how many times
+    /// longer than wide the pattern's cells are drawn along it (>= 1); `None` keeps them round.
+    pub foam_streaks: Option<(Vec2, f32)>,
 }
 
 impl<'a> WaterLook<'a> {
@@ -77,7 +80,7 @@ impl<'a> WaterLook<'a> {
         // Reduce modulo one tile in f64 so that hours of flow keep full f32 precision.
         let tiles = |v: f32| (-(v as f64) * t / material.texture_scale as f64).rem_euclid(1.0) as f32;
         let texture_offset = Vec2::new(tiles(material.flow_velocity.x), tiles(material.flow_velocity.y));
-        Self { material, seabed, texture, texture_offset, reflection: None, foam: None }
+        Self { material, seabed, texture, texture_offset, reflection: None, foam: None, foam_streaks: None }
     }
 
     /// The same look, also reflecting the terrain of `reflection`.
@@ -88,6 +91,13 @@ impl<'a> WaterLook<'a> {
     /// The same look, its foam structured by `pattern`.
     pub fn with_foam(self, pattern: Option<&'a FoamPattern>) -> Self {
         Self { foam: pattern, ..self }
+    }
+
+    /// The same look, its foam's cells drawn out `ratio` (>= 1) times longer than wide along the
+    /// wind blowing towards `wind` (world x, z; any length, none for a zero vector).
+    pub fn with_foam_streaks(self, wind: Option<Vec2>, ratio: f32) -> Self {
+        let foam_streaks = wind.and_then(|w| w.try_normalize()).filter(|_| ratio > 1.0).map(|w| (w, ratio));
+        Self { foam_streaks, ..self }
     }
 
     /// The water-body colour at world (`x`, `z`): `color`, or its blend with the texture.
@@ -409,7 +419,8 @@ fn light_in_water_lanes(
 /// How much of each lane foam covers, [0, 1], for the wave model's coverage `coverage` there:
 /// the look's [`FoamPattern`] at the point (tiles of `foam_scale`) revealed down to the coverage
 /// (its mean over a tile is the coverage), handing over to the coverage itself with distance,
-/// where the pattern's cells would be smaller than a pixel. Without a pattern, the coverage.
+/// where the pattern's cells would be smaller than a pixel; drawn out along the wind when the
+/// look has [`WaterLook::foam_streaks`]. Without a pattern, the coverage.
 #[inline(always)]
 fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, coverage: Lanes) -> Lanes {
     let Some(pattern) = look.foam else { return coverage };
@@ -422,7 +433,17 @@ fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, coverage:
     if !fade.lt(1.0).any() {
         return coverage;
     }
-    let cells = pattern.alpha_lanes(p.x * per_tile, p.z * per_tile, coverage, m.foam_feather);
+    let (u, v) = match look.foam_streaks {
+        // The pattern in axes along and across the wind, stretched along it and squeezed across
+        // by the square root of the ratio each, so that a cell keeps its area and the foam its
+        // coverage.
+        Some((wind, ratio)) => {
+            let (along, across) = (per_tile / ratio.sqrt(), per_tile * ratio.sqrt());
+            ((p.x * wind.x + p.z * wind.y) * along, (p.z * wind.x - p.x * wind.y) * across)
+        }
+        None => (p.x * per_tile, p.z * per_tile),
+    };
+    let cells = pattern.alpha_lanes(u, v, coverage, m.foam_feather);
     // As a weighted sum, exactly the coverage where the fade is complete, as when skipped.
     cells * (1.0 - fade) + coverage * fade
 }
@@ -742,6 +763,43 @@ mod tests {
                     assert_eq!(shade(isa, n), portable, "{isa:?}, {n} points, {lobe:?}");
                 }
             }
+        }
+    }
+
+    /// Streaks draw the foam pattern out along the wind: with the wind along +z and a ratio of 4
+    /// the pattern at (x, z) is the round pattern at (z / 2, -2 x), a quarter turn with the axis
+    /// along the wind stretched twice and the one across squeezed twice (so the cells keep their
+    /// area and the foam its coverage); no wind, or a ratio of 1, leaves it round.
+    #[test]
+    fn foam_streaks_draw_the_pattern_out_along_the_wind() {
+        let lights = [Light::Directional { direction: Vec3::new(0.0, -1.0, 0.0), color: Vec3::ONE, intensity: 1.0 }];
+        let sky = Sky::default();
+        let env = env(&lights, &sky);
+        // A 4 m tile: a quarter tile a metre, and the square roots of 4 exact, so both lookups
+        // land on the same texels bit for bit.
+        let material = WaterMaterial { foam_scale: 4.0, ..WaterMaterial::default() };
+        let pattern = FoamPattern::procedural();
+        let round = WaterLook::new(&material, &NoBottom, None, 0.0).with_foam(Some(&pattern));
+        let streaked = round.with_foam_streaks(Some(Vec2::new(0.0, 3.0)), 4.0);
+        let cover = |look: &WaterLook, x: f32, z: f32| {
+            let p = Vec3Lanes::splat(Vec3::new(x, 0.0, z));
+            foam_cover_lanes(&env, look, p, Lanes::splat(0.3)).0[0]
+        };
+        let (mut differ, mut foamy) = (0, 0);
+        for i in -40..40 {
+            for j in -40..40 {
+                // Within 15 tiles of the eye, where the pattern shows undimmed.
+                let (x, z) = (i as f32 * 0.375, j as f32 * 0.375);
+                let c = cover(&streaked, x, z);
+                assert_eq!(c, cover(&round, z / 2.0, -2.0 * x), "at ({x}, {z})");
+                differ += usize::from(c != cover(&round, x, z));
+                foamy += usize::from(c > 0.5);
+            }
+        }
+        assert!(differ > 1000 && foamy > 100, "the streaks change the pattern: {differ} differ, {foamy} foamy");
+        for unstreaked in [round.with_foam_streaks(None, 4.0), round.with_foam_streaks(Some(Vec2::X), 1.0)] {
+            assert!(unstreaked.foam_streaks.is_none());
+            assert_eq!(cover(&unstreaked, 1.3, -2.7), cover(&round, 1.3, -2.7));
         }
     }
 }

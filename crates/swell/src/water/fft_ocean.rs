@@ -532,6 +532,11 @@ impl WaveModel for FftOcean {
         Ok(())
     }
 
+    fn wind_direction(&self) -> Option<Vec2> {
+        let a = self.params.wind_direction_deg.to_radians();
+        Some(Vec2::new(a.cos(), a.sin()))
+    }
+
     fn foam(&self, grid: &GridSpec, out: &mut [f32]) -> bool {
         if !self.params.foam {
             return false;

@@ -48,6 +48,13 @@ pub trait WaveModel: Send + Sync {
         None
     }
 
+    /// Unit direction (x, z) in the model's frame that the wind blowing the waves travels towards,
+    /// for models driven by one: foam is drawn out into streaks along it
+    /// ([`crate::scene::WaterMaterial::foam_streak`]). `None` (the default) for the rest.
+    fn wind_direction(&self) -> Option<glam::Vec2> {
+        None
+    }
+
     /// Appends the model's slope spectrum to `out` as `(wavenumber rad/m, slope variance)` pairs,
     /// slope variance summed over both horizontal axes (`(A k)^2 / 2` for a wave of amplitude A):
     /// what the renderer filters statistically where the waves are shorter than a pixel or a
