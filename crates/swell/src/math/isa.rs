@@ -7,8 +7,9 @@
 //! or AVX-512 enabled. Every build does the same IEEE operations lane by lane in the same order
 //! (Rust never fuses a multiply and an add on its own, and vector square roots and divisions are
 //! correctly rounded), so the images do not depend on the CPU: the tests compare every build the
-//! machine has bit for bit (`isa_builds_agree` in `shading/water_optics.rs` and
-//! `render/sky_pass.rs`).
+//! machine has bit for bit (`isa_builds_agree` in `shading/water_optics.rs`, `render/sky_pass.rs`,
+//! `render/sea_lod.rs` and `water/trochoidal_sum.rs`). The kernels written with AVX2 intrinsics
+//! (the FFT ocean's, the RGBA8 encoder) ask [`Isa::is_available`] too.
 //!
 //! AVX-512 halves the instructions of a 64-lane loop against AVX2 (16 lanes per instruction, not
 //! 8): on the 2-core AMD EPYC (Zen 4) this project is measured on, the `ocean` preset's CPU time

@@ -141,8 +141,7 @@ impl Rgba8Encoder {
         debug_assert_eq!(dst.len(), 4 * src.len());
         #[cfg(target_arch = "x86_64")]
         // SAFETY: AVX2 checked first (the check is cached by std).
-        let done =
-            if std::arch::is_x86_feature_detected!("avx2") { unsafe { self.encode_row_avx2(src, dst) } } else { 0 };
+        let done = if crate::math::Isa::Avx2.is_available() { unsafe { self.encode_row_avx2(src, dst) } } else { 0 };
         #[cfg(not(target_arch = "x86_64"))]
         let done = 0;
         for (px, c) in dst[4 * done..].chunks_exact_mut(4).zip(&src[done..]) {

@@ -16,10 +16,9 @@
 //! rings takes the whole variance (`far_field_pass.rs`).
 
 use glam::{Vec2, Vec3};
-
-use crate::math::{Isa, Lanes, Vec3Lanes, LANES};
 use rayon::prelude::*;
 
+use crate::math::{Isa, Lanes, Vec3Lanes, LANES};
 use crate::mesh::Clipmap;
 use crate::scene::{Camera, WaterBody};
 use crate::shading::UnresolvedSlopes;
@@ -211,5 +210,43 @@ mod tests {
         let (near, mid, far) = (at(5.0), at(200.0), at(3000.0));
         assert!(near < mid && mid < far && far <= water.slopes.total() + 1e-6, "{near} {mid} {far}");
         assert!(water.slopes.total() > 0.0);
+    }
+
+    /// The footprint filter gives the same normals and variances whichever vector instructions
+    /// run it, over a block that ends mid-batch.
+    #[test]
+    fn isa_builds_agree() {
+        let world = World::new(preset("ocean").unwrap()).unwrap();
+        let water = world.water.as_ref().unwrap();
+        let mut lod = SeaLod::default();
+        let camera = world.scene.camera;
+        let clipmap = lod.update(water, &camera, 0.0, 720).unwrap().clipmap.clone();
+        let f = FootprintFilter::new(&water.slopes, &camera, 720, &clipmap, 1.0);
+        let total = water.slopes.total();
+        // 1000 vertices from every ring (a block that ends mid-batch), near and far.
+        let step = clipmap.positions.len() / 1000;
+        let positions: Vec<Vec3> = clipmap.positions.iter().step_by(step).take(1000).copied().collect();
+        let start: Vec<Vec3> = clipmap.normals.iter().step_by(step).take(1000).copied().collect();
+        let run = |isa: Isa| {
+            let (mut normals, mut unresolved) = (start.clone(), vec![0.0f32; positions.len()]);
+            isa.run(
+                #[inline(always)]
+                || f.move_to_shading(&positions, &mut normals, &mut unresolved, total),
+            );
+            (normals, unresolved)
+        };
+        let bits = |(n, u): &(Vec<Vec3>, Vec<f32>)| {
+            let normals = n.iter().flat_map(|v| v.to_array().map(f32::to_bits));
+            normals.chain(u.iter().map(|u| u.to_bits())).collect::<Vec<_>>()
+        };
+        let (normals, unresolved) = run(Isa::Portable);
+        // The filter does work here: many normals lose some of their tilt.
+        let flattened = normals.iter().zip(&start).filter(|(a, b)| a != b).count();
+        assert!(flattened > 100, "{flattened} of 1000 normals flattened");
+        assert!(unresolved.iter().all(|&u| u > 0.0 && u <= total));
+        let portable = bits(&(normals, unresolved));
+        for isa in Isa::ALL.into_iter().filter(|isa| isa.is_available()) {
+            assert_eq!(bits(&run(isa)), portable, "{isa:?}");
+        }
     }
 }

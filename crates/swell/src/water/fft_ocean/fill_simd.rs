@@ -14,14 +14,7 @@ use super::cascade::BASES;
 
 /// Whether [`fill`] (and the other AVX2 kernels of the FFT ocean) may be called: the CPU has AVX2.
 pub(super) fn available() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    crate::math::Isa::Avx2.is_available()
 }
 
 /// Writes entries b of the five bases `out` (each n long) from `h[b]`, the column's kz `kk[b]`
