@@ -6,6 +6,8 @@
 //! 1. [`clip`]: homogeneous clipping against the near and far planes and a guard band;
 //! 2. [`triangle`]: setup in 24.8 fixed point, edge functions with the top-left fill rule;
 //! 3. [`pipeline`]: setup in parallel, binning into horizontal bands, bands rasterized in parallel;
+//!    triangles of at most 2 x 2 pixels are set up and covered 16 at a time (`tiny_triangles`) and
+//!    binned as fragments;
 //! 4. [`framebuffer`]: linear colour and depth, encoded to RGBA8 at the end (`rgba8_encoder`);
 //! 5. [`line`]: depth-tested lines for overlays.
 //!
@@ -18,6 +20,7 @@ pub mod line;
 mod pipeline;
 pub mod reference;
 mod rgba8_encoder;
+mod tiny_triangles;
 pub mod triangle;
 
 pub use framebuffer::Framebuffer;

@@ -4,9 +4,15 @@
 //! 1. every vertex is classified against the clip planes and, when inside, projected to window
 //!    space once (a grid vertex is shared by six triangles);
 //! 2. triangles are set up in chunks of [`SETUP_CHUNK`], each chunk binning its own triangles
-//!    into bands (parallel binning: no serial pass over all triangles);
+//!    into bands (parallel binning: no serial pass over all triangles). A triangle whose pixel box
+//!    is at most 2 x 2 (most of a dense mesh's) is covered right there, 16 at a time in vector
+//!    lanes (`tiny_triangles`), and binned as its covered pixels; larger ones as setup records;
 //! 3. bands are rasterized in parallel, each walking the chunks in order, so every pixel sees its
 //!    triangles in submission order whatever the number of threads.
+//!
+//! On the 513² terrain at 800 x 800 (524,288 triangles, `tools/llvmpipe/compare.sh`), covering
+//! small triangles at setup took a Gouraud frame from 366 to 252 million instructions
+//! (callgrind, one thread) and from 14.2 to 9.7 ms on two cores (docs/PERFORMANCE.md).
 
 use std::sync::Mutex;
 
@@ -14,7 +20,10 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::clip::{clip_triangle, outcode};
-use super::triangle::{setup_clip_geometry, setup_geometry, to_window, SetupTriangle, WindowVertex};
+use super::tiny_triangles::{classify, Class, Corners, Covers, LANES};
+use super::triangle::{
+    depth_at, perspective_weights, setup_clip_geometry, setup_geometry, to_window, SetupTriangle, WindowVertex,
+};
 use super::{ClipVertex, Framebuffer, Varying};
 
 /// Rows per band: each band is one parallel task. 16 rows of a 1280-wide image (80 KiB of colour)
@@ -24,6 +33,8 @@ const BAND_ROWS: u32 = 16;
 /// Triangles per setup task: large enough to amortise the task and its bins, small enough to
 /// balance.
 const SETUP_CHUNK: usize = 8192;
+// A chunk is whole groups of small-triangle lanes: a triangle's index is its chunk's, group's and lane's.
+const _: () = assert!(SETUP_CHUNK.is_multiple_of(LANES));
 
 /// Vertices per projection task.
 const VERTEX_TASK: usize = 4096;
@@ -66,20 +77,51 @@ impl<V> Default for DrawScratch<V> {
     }
 }
 
-/// One setup task's triangles and, per band, the indices of those that touch it.
+/// One setup task's triangles and, per band, what it draws there, in submission order.
 ///
-/// The records hold no varyings: `corners[i]` names triangle `i`'s vertices (in its clockwise
-/// order), indices below the draw's vertex count into the caller's vertices and the others into
-/// `clipped`, the varyings of vertices made by clipping. Copying three varyings into every
-/// record made a Gouraud record half as large again (108 bytes instead of 72) for pixels that
-/// mostly fail the depth test or are never covered; records are written at setup and read back
-/// per band, and that memory traffic is what dense meshes wait on.
+/// A triangle whose pixel box is at most 2 x 2 (nearly every triangle of a dense mesh: 97 % of
+/// the 513² terrain's at 800 x 800) is rasterized at setup, in parallel, and binned as its covered
+/// pixels ([`Entry::fragment`]): a band then only depth-tests them. Larger triangles are kept as
+/// setup records and scanned per band. The records hold no varyings: `corners[i]` names triangle
+/// `i`'s vertices (in its clockwise order), indices below the draw's vertex count into the
+/// caller's vertices and the others into `clipped`, the varyings of vertices made by clipping.
+/// Copying three varyings into every record made a Gouraud record half as large again for pixels
+/// that mostly fail the depth test or are never covered.
 struct Chunk<V> {
     triangles: Vec<SetupTriangle<()>>,
     /// Empty when `V` has no data (flat shading): nothing to look up.
     corners: Vec<[u32; 3]>,
     clipped: Vec<V>,
-    bins: Vec<Vec<u32>>,
+    bins: Vec<Vec<Entry>>,
+}
+
+/// What a chunk draws in a band: one covered pixel of a small triangle, or a large triangle.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    /// Row-major pixel index in the image for a fragment; [`Entry::TRIANGLE`] for a triangle.
+    pixel: u32,
+    /// Window-space depth of the fragment.
+    z: f32,
+    /// A fragment's triangle: its index in the draw's index buffer, with [`Entry::SWAPPED`] set
+    /// when its vertices 1 and 2 were swapped at setup. A triangle: its index in
+    /// [`Chunk::triangles`].
+    index: u32,
+    /// A fragment's perspective-correct weights of its triangle's (clockwise) corners; zeros
+    /// when the draw interpolates nothing.
+    weights: [f32; 3],
+}
+
+impl Entry {
+    /// `pixel` of a triangle entry (no image has 2^32 pixels: sides are at most 2^16).
+    const TRIANGLE: u32 = u32::MAX;
+    /// Flag in a fragment's `index`: an index buffer holds fewer than 2^32 entries, so fewer
+    /// than 2^31 triangles.
+    const SWAPPED: u32 = 1 << 31;
+
+    /// Triangle `t` of the chunk.
+    fn triangle(t: u32) -> Self {
+        Self { pixel: Self::TRIANGLE, z: 0.0, index: t, weights: [0.0; 3] }
+    }
 }
 
 /// Draws indexed triangles into `target` with a depth test (less-than), shading each visible
@@ -112,7 +154,7 @@ pub fn draw_with<V, S>(
         return;
     }
     let chunks = &scratch.chunks;
-    for_each_band(target, |band, color, depth| raster_band(chunks, vertices, band, color, depth, shader));
+    for_each_band(target, |band, color, depth| raster_band(chunks, vertices, indices, band, color, depth, shader));
 }
 
 /// Stages 1 and 2 of a draw into `target`: projects the vertices and sets up and bins the
@@ -175,7 +217,7 @@ pub fn draw_deferred_with<V, S>(
         // Which worker's buffers a band uses changes nothing in the image: each band resets them.
         let worker = rayon::current_thread_index().unwrap_or(0) % deferred.len();
         let mut mine = deferred[worker].lock().unwrap_or_else(|e| e.into_inner());
-        raster_band_deferred(chunks, vertices, band, color, depth, &mut mine, shade)
+        raster_band_deferred(chunks, vertices, indices, band, color, depth, &mut mine, shade)
     });
 }
 
@@ -188,13 +230,21 @@ struct Band {
     height: u32,
 }
 
+impl Band {
+    /// Its first row of the image.
+    fn first_row(self) -> u32 {
+        self.index as u32 * BAND_ROWS
+    }
+}
+
 /// Draws band `band` (`color` and `depth` its pixels):
-/// every chunk's triangles binned to it, in submission order.
+/// every chunk's triangles and fragments binned to it, in submission order.
 // The three stages stay out of line so that profiles (perf, callgrind) name them.
 #[inline(never)]
 fn raster_band<V: Varying, S>(
     chunks: &[Chunk<V>],
     vertices: &[ClipVertex<V>],
+    indices: &[u32],
     band: Band,
     color: &mut [Vec3],
     depth: &mut [f32],
@@ -202,29 +252,68 @@ fn raster_band<V: Varying, S>(
 ) where
     S: Fn(&Fragment<V>) -> Vec3 + Sync,
 {
+    let (row, y0) = (band.row, band.first_row());
     // A triangle's corners are gathered once, when its walk starts, not per pixel (they are
     // looked up by index in a vertex array of megabytes).
     walk_band(
         chunks,
         band,
         depth,
+        color,
         |chunk, triangle| corner_varyings(chunk, triangle, vertices),
         #[inline(always)]
-        |i, corners, at| {
+        |color, i, corners, at| {
             let varying = varying_at(at.tri, corners, at.cov.linear);
             color[i] = shader(&Fragment { varying, primitive: at.tri.primitive, x: at.cov.x, y: at.cov.y })
         },
+        #[inline(always)]
+        |color, i, entry| {
+            let varying = fragment_varying(entry, indices, vertices);
+            let (x, y) = ((i % row) as u32, y0 + (i / row) as u32);
+            color[i] = shader(&Fragment { varying, primitive: entry.index & !Entry::SWAPPED, x, y })
+        },
     );
+}
+
+/// The varyings of a fragment entry: its triangle's corners, found through the index buffer,
+/// weighted by its perspective-correct weights (defaults when `V` carries no data).
+#[inline(always)]
+fn fragment_varying<V: Varying>(entry: &Entry, indices: &[u32], vertices: &[ClipVertex<V>]) -> V {
+    if std::mem::size_of::<V>() == 0 {
+        return V::default();
+    }
+    let [a, b, d] = fragment_corners(entry.index, indices, vertices);
+    V::weighted(&a, &b, &d, entry.weights)
+}
+
+/// The varyings at the (clockwise) corners of the triangle a fragment entry's `index` names.
+#[inline(always)]
+fn fragment_corners<V: Varying>(index: u32, indices: &[u32], vertices: &[ClipVertex<V>]) -> [V; 3] {
+    let t = (index & !Entry::SWAPPED) as usize * 3;
+    let (a, b, d) = (indices[t] as usize, indices[t + 1] as usize, indices[t + 2] as usize);
+    let (a, b, d) = (vertices[a].varying, vertices[b].varying, vertices[d].varying);
+    if index & Entry::SWAPPED != 0 {
+        [a, d, b]
+    } else {
+        [a, b, d]
+    }
 }
 
 /// The nearest triangle found so far at a pixel of a deferred draw: which one and where in it.
 #[derive(Clone, Copy, Debug, Default)]
 struct Hit {
-    /// Chunk and triangle within it.
+    /// Chunk and triangle record within it; [`Hit::FRAGMENT`] and a fragment entry's `index`
+    /// for a triangle binned as fragments.
     chunk: u32,
     triangle: u32,
-    /// Screen-space barycentric weights ([`super::triangle::Coverage::linear`]).
-    linear: [f32; 3],
+    /// A record's screen-space barycentric weights ([`super::triangle::Coverage::linear`]), or a
+    /// fragment's perspective-correct ones.
+    weights: [f32; 3],
+}
+
+impl Hit {
+    /// `chunk` of a hit by a fragment entry.
+    const FRAGMENT: u32 = u32::MAX;
 }
 
 /// The varyings of triangle `triangle` of `chunk` at its three (clockwise) corners; defaults
@@ -263,23 +352,38 @@ struct Covered<'a> {
     cov: super::triangle::Coverage,
 }
 
-/// Walks every triangle binned to `band` in submission order and calls `nearer(pixel, prepared,
-/// covered)` for each covered pixel whose depth it passes (strictly nearer: the first of equal
-/// depths wins), after writing the new depth; `prepared` is what `begin(chunk, triangle)` returned
-/// for the triangle when its walk started.
+/// Walks everything binned to `band` in submission order. For each covered pixel of a triangle
+/// record whose depth it passes (strictly nearer: the first of equal depths wins), it writes the
+/// new depth and calls `nearer(pixel, prepared, covered)`, `prepared` being what
+/// `begin(chunk, triangle)` returned when the triangle's walk started; for each fragment entry
+/// that passes, it writes the depth and calls `fragment(pixel, entry)`. `pixel` indexes the band;
+/// both get `out`, what they write to.
 #[inline(always)]
-fn walk_band<V: Varying, T>(
+fn walk_band<V: Varying, T, O: ?Sized>(
     chunks: &[Chunk<V>],
     band: Band,
     depth: &mut [f32],
+    out: &mut O,
     mut begin: impl FnMut(&Chunk<V>, u32) -> T,
-    mut nearer: impl FnMut(usize, &T, Covered),
+    mut nearer: impl FnMut(&mut O, usize, &T, Covered),
+    mut fragment: impl FnMut(&mut O, usize, &Entry),
 ) {
     let Band { index: band, row, height } = band;
     let y0 = band as u32 * BAND_ROWS;
     let y1 = (y0 + BAND_ROWS).min(height) - 1;
+    // Fragment entries hold image pixel indices; the band starts at this one.
+    let base = y0 as usize * row;
     for (c, chunk) in chunks.iter().enumerate() {
-        for &t in &chunk.bins[band] {
+        for entry in &chunk.bins[band] {
+            if entry.pixel != Entry::TRIANGLE {
+                let i = entry.pixel as usize - base;
+                if entry.z < depth[i] {
+                    depth[i] = entry.z;
+                    fragment(out, i, entry);
+                }
+                continue;
+            }
+            let t = entry.index;
             let tri = &chunk.triangles[t as usize];
             let prepared = begin(chunk, t);
             tri.scan(
@@ -292,7 +396,7 @@ fn walk_band<V: Varying, T>(
                     let z = tri.depth(cov.linear);
                     if z < depth[i] {
                         depth[i] = z;
-                        nearer(i, &prepared, Covered { chunk_index: c as u32, triangle: t, tri, cov });
+                        nearer(out, i, &prepared, Covered { chunk_index: c as u32, triangle: t, tri, cov });
                     }
                 },
             );
@@ -305,9 +409,11 @@ fn walk_band<V: Varying, T>(
 /// `shade` gets one row's covered pixels at a time, left to right, so it can shade them in batches;
 /// when they are one unbroken span (most rows of open water) it writes their colours in place.
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 fn raster_band_deferred<V: Varying, S>(
     chunks: &[Chunk<V>],
     vertices: &[ClipVertex<V>],
+    indices: &[u32],
     band: Band,
     color: &mut [Vec3],
     depth: &mut [f32],
@@ -325,9 +431,14 @@ fn raster_band_deferred<V: Varying, S>(
         chunks,
         band,
         depth,
+        &mut (&mut hits[..], &mut covered[..]),
         |_, _| (),
-        |i, _, at| {
-            hits[i] = Hit { chunk: at.chunk_index, triangle: at.triangle, linear: at.cov.linear };
+        |(hits, covered), i, _, at| {
+            hits[i] = Hit { chunk: at.chunk_index, triangle: at.triangle, weights: at.cov.linear };
+            covered[i] = true;
+        },
+        |(hits, covered), i, entry| {
+            hits[i] = Hit { chunk: Hit::FRAGMENT, triangle: entry.index, weights: entry.weights };
             covered[i] = true;
         },
     );
@@ -338,19 +449,26 @@ fn raster_band_deferred<V: Varying, S>(
         // Neighbouring pixels of a row mostly share their triangle (about 30 pixels each on the
         // unbounded sea): its record and its three corners' varyings are looked up once per run,
         // not per pixel (they are gathered from a vertex array of megabytes).
-        let mut current: Option<(u32, u32, &SetupTriangle<()>, [V; 3])> = None;
+        // A fragment hit has no record (`None`): its weights are already perspective-correct.
+        let mut current: Option<Run<V>> = None;
         for (x, (hit, _)) in hits.iter().zip(covered).enumerate().filter(|(_, (_, &c))| c) {
             let (tri, corners) = match current {
                 Some((c, t, tri, corners)) if c == hit.chunk && t == hit.triangle => (tri, corners),
                 _ => {
-                    let chunk = &chunks[hit.chunk as usize];
-                    let tri = &chunk.triangles[hit.triangle as usize];
-                    let corners = corner_varyings(chunk, hit.triangle, vertices);
+                    let (tri, corners) = if hit.chunk == Hit::FRAGMENT {
+                        (None, fragment_corners(hit.triangle, indices, vertices))
+                    } else {
+                        let chunk = &chunks[hit.chunk as usize];
+                        (Some(&chunk.triangles[hit.triangle as usize]), corner_varyings(chunk, hit.triangle, vertices))
+                    };
                     current = Some((hit.chunk, hit.triangle, tri, corners));
                     (tri, corners)
                 }
             };
-            varyings.push(varying_at(tri, &corners, hit.linear));
+            varyings.push(match tri {
+                Some(tri) => varying_at(tri, &corners, hit.weights),
+                None => V::weighted(&corners[0], &corners[1], &corners[2], hit.weights),
+            });
             columns.push(x as u32);
         }
         let (Some(&first), Some(&last)) = (columns.first(), columns.last()) else { continue };
@@ -368,6 +486,10 @@ fn raster_band_deferred<V: Varying, S>(
         }
     }
 }
+
+/// The triangle of a run of a deferred row's pixels: chunk and triangle as in [`Hit`], its setup
+/// record (none for a fragment hit) and its corners' varyings.
+type Run<'a, V> = (u32, u32, Option<&'a SetupTriangle<()>>, [V; 3]);
 
 /// One worker's buffers for [`raster_band_deferred`], kept between draws.
 struct DeferredScratch<V> {
@@ -419,6 +541,10 @@ fn setup_and_bin<V: Varying>(
     // Indices at or above this name `Chunk::clipped` (index buffers are u32, so are vertex counts).
     let n_vertices = vertices.len() as u32;
     let window = &scratch.window;
+    // Fragment entries name pixels by a u32 index and triangles by a 31-bit one; every image and
+    // index buffer this crate makes fits, and anything larger keeps to triangle records.
+    let fragments =
+        (width as u64 * height as u64) < Entry::TRIANGLE as u64 && indices.len() / 3 < Entry::SWAPPED as usize;
     // One chunk per task, for the same balance as the bands: triangles outside the view come in runs.
     let chunks = scratch.chunks.par_iter_mut().zip(indices.par_chunks(3 * SETUP_CHUNK)).enumerate().with_max_len(1);
     chunks.for_each(|(c, (chunk, idx))| {
@@ -428,13 +554,14 @@ fn setup_and_bin<V: Varying>(
         chunk.bins.resize_with(n_bands, Vec::new);
         chunk.bins.iter_mut().for_each(Vec::clear);
         let Chunk { triangles, corners, clipped, bins } = chunk;
-        let mut emit = |tri: Option<(SetupTriangle<()>, bool)>, [a, b, d]: [u32; 3]| {
+        // `bins` passed in, not captured: the fragment path below pushes to it too.
+        let mut emit = |bins: &mut [Vec<Entry>], tri: Option<(SetupTriangle<()>, bool)>, [a, b, d]: [u32; 3]| {
             if let Some((t, swapped)) = tri {
                 let i = triangles.len() as u32;
                 // Half-open: an inclusive range's `exhausted` flag is one more compare and branch
                 // per triangle (callgrind: 2.7 fewer branches per triangle on the 513² terrain).
                 for band in (t.min_y / BAND_ROWS)..(t.max_y / BAND_ROWS + 1) {
-                    bins[band as usize].push(i);
+                    bins[band as usize].push(Entry::triangle(i));
                 }
                 triangles.push(t);
                 if has_varying {
@@ -442,27 +569,78 @@ fn setup_and_bin<V: Varying>(
                 }
             }
         };
-        for (k, t) in idx.chunks_exact(3).enumerate() {
-            let prim = (c * SETUP_CHUNK + k) as u32;
-            let (a, b, d) = (window[t[0] as usize], window[t[1] as usize], window[t[2] as usize]);
-            if a.0 & b.0 & d.0 != 0 {
-                continue; // wholly outside one plane
+        let (mut lanes, mut covers) = (Corners::default(), Covers::default());
+        for (g, group) in idx.chunks(3 * LANES).enumerate() {
+            // Small triangles, LANES at a time: classified and covered in vector lanes.
+            for (k, t) in group.chunks_exact(3).enumerate() {
+                let (a, b, d) = (&window[t[0] as usize], &window[t[1] as usize], &window[t[2] as usize]);
+                lanes.unclipped[k] = fragments && (a.0 | b.0 | d.0) == 0;
+                for (v, w) in [a, b, d].into_iter().enumerate() {
+                    lanes.x[v][k] = w.1.x;
+                    lanes.y[v][k] = w.1.y;
+                }
             }
-            let crossed = a.0 | b.0 | d.0;
-            if crossed == 0 {
-                emit(setup_geometry(&[a.1, b.1, d.1], prim, width, height, cull_back), [t[0], t[1], t[2]]);
-                continue;
-            }
-            let tri = [vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize]];
-            let poly = clip_triangle(tri, crossed);
-            let base = n_vertices + clipped.len() as u32;
-            if has_varying && poly.len >= 3 {
-                clipped.extend(poly.vertices[..poly.len].iter().map(|v| v.varying));
-            }
-            for f in 1..poly.len.saturating_sub(1) {
-                let fan = [poly.vertices[0].position, poly.vertices[f].position, poly.vertices[f + 1].position];
-                let k = f as u32;
-                emit(setup_clip_geometry(fan, prim, width, height, cull_back), [base, base + k, base + k + 1]);
+            lanes.unclipped[group.len() / 3..].fill(false);
+            classify(&lanes, width, height, cull_back, &mut covers);
+            for (k, t) in group.chunks_exact(3).enumerate() {
+                let prim = (c * SETUP_CHUNK + g * LANES + k) as u32;
+                match covers.class(k) {
+                    Class::Nothing => continue,
+                    Class::Tiny => {
+                        let (a, b, d) = (&window[t[0] as usize].1, &window[t[1] as usize].1, &window[t[2] as usize].1);
+                        let swapped = covers.swapped[k];
+                        let (b, d) = if swapped { (d, b) } else { (b, d) };
+                        let (z, inv_w) = ([a.z, b.z, d.z], [a.inv_w, b.inv_w, d.inv_w]);
+                        let index = prim | if swapped { Entry::SWAPPED } else { 0 };
+                        covers.fragments(k, |x, y, linear| {
+                            let weights = if has_varying { perspective_weights(&inv_w, linear) } else { [0.0; 3] };
+                            let z = depth_at(&z, linear);
+                            bins[(y / BAND_ROWS) as usize].push(Entry { pixel: y * width + x, z, index, weights });
+                        });
+                        continue;
+                    }
+                    Class::General => {}
+                }
+                let (a, b, d) = (window[t[0] as usize], window[t[1] as usize], window[t[2] as usize]);
+                if a.0 & b.0 & d.0 != 0 {
+                    continue; // wholly outside one plane
+                }
+                let crossed = a.0 | b.0 | d.0;
+                if crossed == 0 {
+                    let tri = setup_geometry(&[a.1, b.1, d.1], prim, width, height, cull_back);
+                    match tri {
+                        Some((tri, swapped))
+                            if fragments && tri.max_x - tri.min_x <= 1 && tri.max_y - tri.min_y <= 1 =>
+                        {
+                            // A large triangle the viewport clamps to a few pixels: binned as
+                            // fragments too, covered by the general scan (the lanes' 32 bits
+                            // do not hold its edge values).
+                            let index = prim | if swapped { Entry::SWAPPED } else { 0 };
+                            tri.scan((tri.min_y, tri.max_y), |cov| {
+                                let weights = if has_varying { tri.perspective_weights(cov.linear) } else { [0.0; 3] };
+                                let (pixel, z) = (cov.y * width + cov.x, tri.depth(cov.linear));
+                                bins[(cov.y / BAND_ROWS) as usize].push(Entry { pixel, z, index, weights });
+                            });
+                        }
+                        _ => emit(bins, tri, [t[0], t[1], t[2]]),
+                    }
+                    continue;
+                }
+                let tri = [vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize]];
+                let poly = clip_triangle(tri, crossed);
+                let base = n_vertices + clipped.len() as u32;
+                if has_varying && poly.len >= 3 {
+                    clipped.extend(poly.vertices[..poly.len].iter().map(|v| v.varying));
+                }
+                for f in 1..poly.len.saturating_sub(1) {
+                    let fan = [poly.vertices[0].position, poly.vertices[f].position, poly.vertices[f + 1].position];
+                    let k = f as u32;
+                    emit(
+                        bins,
+                        setup_clip_geometry(fan, prim, width, height, cull_back),
+                        [base, base + k, base + k + 1],
+                    );
+                }
             }
         }
     });

@@ -10,8 +10,10 @@ use super::{ClipVertex, Varying};
 
 /// Fractional bits of the fixed-point screen coordinates.
 pub const SUBPIXEL_BITS: u32 = 8;
-const ONE: i32 = 1 << SUBPIXEL_BITS;
-const HALF: i32 = ONE / 2;
+/// One pixel in fixed point.
+pub(super) const ONE: i32 = 1 << SUBPIXEL_BITS;
+/// Half a pixel: pixel centres sit at `px * ONE + HALF`.
+pub(super) const HALF: i32 = ONE / 2;
 
 /// Boxes at least this many pixels wide (less one) have each row's covered run solved for
 /// ([`SetupTriangle::scan`]); narrower ones test every pixel.
@@ -194,10 +196,37 @@ impl SetupTriangle<()> {
     }
 }
 
+/// Window-space depth at linear weights `l` of corners at depths `z`: affine in screen space.
+/// [`SetupTriangle::depth`] and the small-triangle path share it, so both give the same bits.
+#[inline(always)]
+pub(super) fn depth_at(z: &[f32; 3], l: [f32; 3]) -> f32 {
+    l[0] * z[0] + l[1] * z[1] + l[2] * z[2]
+}
+
+/// Perspective-correct weights from linear ones `l` of corners with 1/w `inv_w`: each weight
+/// divided by its corner's w and the three renormalised.
+#[inline(always)]
+pub(super) fn perspective_weights(inv_w: &[f32; 3], l: [f32; 3]) -> [f32; 3] {
+    let p = [l[0] * inv_w[0], l[1] * inv_w[1], l[2] * inv_w[2]];
+    let s = 1.0 / (p[0] + p[1] + p[2]);
+    [p[0] * s, p[1] * s, p[2] * s]
+}
+
+/// Linear (screen-space) weights at a pixel from its edge values `e` (biased by `bias` for the
+/// fill rule, which only decides ties and is undone here) and 1 / twice the area.
+#[inline(always)]
+pub(super) fn linear_weights(e: [i64; 3], bias: [i64; 3], inv_area: f32) -> [f32; 3] {
+    [(e[0] - bias[0]) as f32 * inv_area, (e[1] - bias[1]) as f32 * inv_area, (e[2] - bias[2]) as f32 * inv_area]
+}
+
 /// Whether edge a -> b is a top or left edge for triangles wound clockwise on screen (y down),
 /// the orientation [`setup`] leaves them in.
-fn is_top_left(dx: i64, dy: i64) -> bool {
-    (dy == 0 && dx > 0) || dy < 0
+#[inline(always)]
+pub(super) fn is_top_left<T: Copy + Default + Ord>(dx: T, dy: T) -> bool {
+    // `&` and `|`, not `&&` and `||`: no branch (a dense mesh's edges go every way, so a branch
+    // here mispredicts about as often as not), and the small-triangle lanes vectorise it.
+    let zero = T::default();
+    (dy == zero) & (dx > zero) | (dy < zero)
 }
 
 /// A covered pixel: its coordinates and linear (screen-space) barycentric weights.
@@ -217,16 +246,14 @@ impl<V: Varying> SetupTriangle<V> {
     /// Window-space depth at a pixel: affine in screen space, so the linear weights give it.
     #[inline]
     pub fn depth(&self, l: [f32; 3]) -> f32 {
-        l[0] * self.z[0] + l[1] * self.z[1] + l[2] * self.z[2]
+        depth_at(&self.z, l)
     }
 
     /// Perspective-correct weights from linear ones: each divided by its vertex's w and
     /// renormalised (one division per pixel, only for pixels that pass the depth test).
     #[inline]
     pub fn perspective_weights(&self, l: [f32; 3]) -> [f32; 3] {
-        let p = [l[0] * self.inv_w[0], l[1] * self.inv_w[1], l[2] * self.inv_w[2]];
-        let s = 1.0 / (p[0] + p[1] + p[2]);
-        [p[0] * s, p[1] * s, p[2] * s]
+        perspective_weights(&self.inv_w, l)
     }
 
     /// The varyings at a pixel, from perspective-correct weights.
@@ -251,7 +278,7 @@ impl<V: Varying> SetupTriangle<V> {
         let edge = |a: usize, b: usize| {
             let (dx, dy) = ((x[b] - x[a]) as i64, (y[b] - y[a]) as i64);
             // Pixels exactly on an edge count only for top and left edges.
-            let bias = if is_top_left(dx, dy) { 0 } else { -1 };
+            let bias = is_top_left(dx, dy) as i64 - 1;
             let start = dx * (py0 - y[a] as i64) - dy * (px0 - x[a] as i64) + bias;
             (start, -dy * ONE as i64, dx * ONE as i64, bias)
         };
@@ -261,8 +288,7 @@ impl<V: Varying> SetupTriangle<V> {
         let inv = self.inv_area;
         let last = (self.max_x - self.min_x) as i64;
         // Undo the bias before weighting; it only decides ties.
-        let weights =
-            |e0: i64, e1: i64, e2: i64| [(e0 - b0) as f32 * inv, (e1 - b1) as f32 * inv, (e2 - b2) as f32 * inv];
+        let weights = |e0: i64, e1: i64, e2: i64| linear_weights([e0, e1, e2], [b0, b1, b2], inv);
         // Half-open ranges below: an inclusive range's iterator keeps an `exhausted` flag, one
         // more compare and branch per pixel in the hottest loops. Two loops, not one with a
         // per-pixel choice: one loop cost the unbounded sea's raster 13 % more (callgrind).

@@ -34,6 +34,11 @@ const MARK_TASK: usize = 4096;
 /// so fixed-size tasks balance better than rayon's adaptive splitting.
 const SHADE_TASK: usize = 4096;
 
+/// Points per [`SurfaceShader::shade_points`] call, gathered in arrays on the stack: a task's
+/// worth in `Vec`s was 240 KiB, which the allocator maps and unmaps on every call (above its
+/// 128 KiB threshold), a page fault per 4 KiB touched, every frame.
+const SHADE_RUN: usize = 256;
+
 /// What a surface looks like: the radiance (linear RGB) leaving a surface point towards the eye,
 /// given as a [`SurfaceVarying`]: world position (m), unit normal, foam coverage in [0, 1] and
 /// the slope variance the mesh and the pixel leave unresolved.
@@ -148,24 +153,24 @@ impl ShadedDraw {
                 self.faces.resize(mesh.indices.len() / 3, Vec3::ZERO);
                 self.faces.par_chunks_mut(SHADE_TASK).zip(mesh.indices.par_chunks(3 * SHADE_TASK)).for_each(
                     |(faces, tris)| {
-                        let points: Vec<SurfaceVarying> = tris
-                            .chunks_exact(3)
-                            .map(|t| {
+                        let mut points = [SurfaceVarying::default(); SHADE_RUN];
+                        for (faces, tris) in faces.chunks_mut(SHADE_RUN).zip(tris.chunks(3 * SHADE_RUN)) {
+                            for (p, t) in points.iter_mut().zip(tris.chunks_exact(3)) {
                                 // Indexed one by one: `[0, 1, 2].map` is not always inlined here.
                                 let (i, j, k) = (t[0] as usize, t[1] as usize, t[2] as usize);
                                 let (a, b, d) = (positions[i], positions[j], positions[k]);
                                 // Triangles wind counter-clockwise seen from their front, so this
                                 // normal points out of it (up, for water and terrain).
-                                SurfaceVarying {
+                                *p = SurfaceVarying {
                                     position: (a + b + d) / 3.0,
                                     normal: (b - a).cross(d - a).normalize_or(Vec3::Y),
                                     foam: (mesh.foam_at(i) + mesh.foam_at(j) + mesh.foam_at(k)) / 3.0,
                                     unresolved: (mesh.unresolved_at(i) + mesh.unresolved_at(j) + mesh.unresolved_at(k))
                                         / 3.0,
-                                }
-                            })
-                            .collect();
-                        shader.shade_points(&points, faces);
+                                };
+                            }
+                            shader.shade_points(&points[..faces.len()], faces);
+                        }
                     },
                 );
                 let faces = &self.faces;
@@ -241,13 +246,23 @@ impl ShadedDraw {
         // Visible vertices in blocks, each shaded as one run (the water shades many at a time).
         self.colored.par_chunks_mut(SHADE_TASK).enumerate().for_each(|(block, colored)| {
             let base = block * SHADE_TASK;
-            let lit: Vec<usize> =
-                (base..base + colored.len()).filter(|&i| visible[i].load(Ordering::Relaxed)).collect();
-            let points: Vec<SurfaceVarying> = lit.iter().map(|&i| mesh.point(i)).collect();
-            let mut colors = vec![Vec3::ZERO; points.len()];
-            shader.shade_points(&points, &mut colors);
-            for (&i, c) in lit.iter().zip(colors) {
-                colored[i - base].varying = c;
+            let (mut lit, mut points, mut colors) =
+                ([0; SHADE_RUN], [SurfaceVarying::default(); SHADE_RUN], [Vec3::ZERO; SHADE_RUN]);
+            let mut n = 0;
+            // Runs of up to SHADE_RUN visible vertices, the last one shaded after the loop.
+            let end = base + colored.len();
+            for (i, seen) in visible[base..end].iter().enumerate().map(|(k, v)| (base + k, v)) {
+                if seen.load(Ordering::Relaxed) {
+                    (lit[n], points[n]) = (i - base, mesh.point(i));
+                    n += 1;
+                }
+                if n == SHADE_RUN || (n > 0 && i + 1 == end) {
+                    shader.shade_points(&points[..n], &mut colors[..n]);
+                    for (&i, &c) in lit[..n].iter().zip(&colors[..n]) {
+                        colored[i].varying = c;
+                    }
+                    n = 0;
+                }
             }
         });
     }
