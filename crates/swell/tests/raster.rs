@@ -273,12 +273,9 @@ fn back_face_culling_skips_clockwise_triangles_only() {
     assert_eq!(drawn(&[0, 2, 1], Cull::None), front);
 }
 
-#[test]
-fn the_image_is_bit_identical_on_one_two_and_three_threads() {
-    let mut rng = ChaCha8Rng::seed_from_u64(3);
-    let (width, height) = (157, 131);
-    let positions = random_triangles(&mut rng, 2000, 0.3);
-    let verts: Vec<ClipVertex<Vec3>> = positions
+/// `positions` at random NDC depths in [-0.9, 0.9], each with a random colour to interpolate.
+fn with_random_depths_and_colors(rng: &mut ChaCha8Rng, positions: &[Vec4]) -> Vec<ClipVertex<Vec3>> {
+    positions
         .iter()
         .map(|&p| {
             let z = rng.gen_range(-0.9f32..0.9);
@@ -287,7 +284,15 @@ fn the_image_is_bit_identical_on_one_two_and_three_threads() {
                 varying: Vec3::new(rng.gen(), rng.gen(), rng.gen()),
             }
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn the_image_is_bit_identical_on_one_two_and_three_threads() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let (width, height) = (157, 131);
+    let positions = random_triangles(&mut rng, 2000, 0.3);
+    let verts = with_random_depths_and_colors(&mut rng, &positions);
     let indices: Vec<u32> = (0..verts.len() as u32).collect();
     let render = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
@@ -324,16 +329,7 @@ fn the_binned_draw_matches_a_serial_one_with_small_and_large_triangles() {
     let mut positions = random_triangles(&mut rng, 12000, 0.015);
     positions.extend(random_triangles(&mut rng, 300, 0.1));
     positions.extend(random_triangles(&mut rng, 40, 0.5));
-    let verts: Vec<ClipVertex<Vec3>> = positions
-        .iter()
-        .map(|&p| {
-            let z = rng.gen_range(-0.9f32..0.9);
-            ClipVertex {
-                position: Vec4::new(p.x, p.y, z * p.w, p.w),
-                varying: Vec3::new(rng.gen(), rng.gen(), rng.gen()),
-            }
-        })
-        .collect();
+    let verts = with_random_depths_and_colors(&mut rng, &positions);
     // Shuffled corners, so triangles of both windings.
     let mut indices: Vec<u32> = (0..verts.len() as u32).collect();
     for t in indices.chunks_exact_mut(3) {

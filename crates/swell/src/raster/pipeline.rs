@@ -11,7 +11,7 @@
 //!    triangles in submission order whatever the number of threads.
 //!
 //! On the 513² terrain at 800 x 800 (524,288 triangles, `tools/llvmpipe/compare.sh`), covering
-//! small triangles at setup took a Gouraud frame from 366 to 252 million instructions
+//! small triangles at setup took a Gouraud frame from 365 to 250 million instructions
 //! (callgrind, one thread) and from 14.2 to 9.7 ms on two cores (docs/PERFORMANCE.md).
 
 use std::sync::Mutex;
@@ -81,7 +81,7 @@ impl<V> Default for DrawScratch<V> {
 ///
 /// A triangle whose pixel box is at most 2 x 2 (nearly every triangle of a dense mesh: 97 % of
 /// the 513² terrain's at 800 x 800) is rasterized at setup, in parallel, and binned as its covered
-/// pixels ([`Entry::fragment`]): a band then only depth-tests them. Larger triangles are kept as
+/// pixels (fragment [`Entry`]s): a band then only depth-tests them. Larger triangles are kept as
 /// setup records and scanned per band. The records hold no varyings: `corners[i]` names triangle
 /// `i`'s vertices (in its clockwise order), indices below the draw's vertex count into the
 /// caller's vertices and the others into `clipped`, the varyings of vertices made by clipping.
@@ -112,7 +112,7 @@ struct Entry {
 }
 
 impl Entry {
-    /// `pixel` of a triangle entry (no image has 2^32 pixels: sides are at most 2^16).
+    /// `pixel` of a triangle entry (a draw into 2^32 pixels or more bins no fragments).
     const TRIANGLE: u32 = u32::MAX;
     /// Flag in a fragment's `index`: an index buffer holds fewer than 2^32 entries, so fewer
     /// than 2^31 triangles.
