@@ -369,3 +369,37 @@ fn the_binned_draw_matches_a_serial_one_with_small_and_large_triangles() {
     assert!(bits(&forward) == bits(&expected), "the forward draw differs from the serial one");
     assert!(bits(&deferred) == bits(&expected), "the deferred draw differs from the serial one");
 }
+
+/// A vertex with a w so small that 1/w overflows (below about 3e-39) is inside every clip plane
+/// but has no window position: its triangles are dropped, in debug builds without an arithmetic
+/// overflow, whatever path their size would take, and the rest of the draw is unaffected.
+#[test]
+fn a_vertex_whose_inverse_w_overflows_drops_its_triangles() {
+    let (width, height) = (64u32, 64u32);
+    let v = |x: f32, y: f32, w: f32| ClipVertex { position: Vec4::new(x, y, 0.0, w), varying: () };
+    let verts = [
+        // Small next to the overflowing vertex, large, and one ordinary triangle.
+        v(0.0, -2.0, 1.0),
+        v(1e-40, -1e-40, 1e-40),
+        v(-2.0, -2.0, 1.0),
+        v(-0.5, -0.5, 1.0),
+        v(0.5, -0.5, 1.0),
+        v(1e-40, 5e-41, 1e-40),
+        v(-0.5, 0.2, 1.0),
+        v(-0.4, 0.2, 1.0),
+        v(-0.5, 0.3, 1.0),
+    ];
+    let indices: Vec<u32> = (0..verts.len() as u32).collect();
+    for cull in [Cull::None, Cull::Back] {
+        let mut fb = Framebuffer::new(width, height);
+        let drawn = AtomicU32::new(0);
+        draw(&mut fb, &verts, &indices, cull, &|f| {
+            assert_eq!(f.primitive, 2, "only the ordinary triangle draws");
+            drawn.fetch_add(1, Ordering::Relaxed);
+            Vec3::ONE
+        });
+        // The ordinary triangle faces the viewer (counter-clockwise), so it draws either way.
+        assert!(drawn.into_inner() > 0, "{cull:?}");
+        assert!(fb.color.iter().all(|c| c.is_finite()));
+    }
+}

@@ -39,6 +39,10 @@ const _: () = assert!(SETUP_CHUNK.is_multiple_of(LANES));
 /// Vertices per projection task.
 const VERTEX_TASK: usize = 4096;
 
+/// Outcode bit of a vertex inside every clip plane whose window position is not finite; the
+/// clipper ignores it (it is none of its planes) and the clipped setup drops the triangle.
+const NOT_FINITE: u8 = 1 << 6;
+
 /// Which triangles to skip.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Cull {
@@ -112,7 +116,7 @@ struct Entry {
 }
 
 impl Entry {
-    /// `pixel` of a triangle entry (a draw into 2^32 pixels or more bins no fragments).
+    /// `pixel` of a triangle entry (a draw with a side over 2^16 bins no fragments).
     const TRIANGLE: u32 = u32::MAX;
     /// Flag in a fragment's `index`: an index buffer holds fewer than 2^32 entries, so fewer
     /// than 2^31 triangles.
@@ -515,7 +519,16 @@ fn project_vertices<V: Varying>(out: &mut Vec<(u8, WindowVertex)>, vertices: &[C
     out.par_chunks_mut(VERTEX_TASK).zip(vertices.par_chunks(VERTEX_TASK)).for_each(|(out, vertices)| {
         for (o, v) in out.iter_mut().zip(vertices) {
             let code = outcode(v.position);
-            *o = (code, if code == 0 { to_window(v.position, w, h) } else { WindowVertex::default() });
+            *o = if code == 0 {
+                let window = to_window(v.position, w, h);
+                // A w so small that 1/w overflows (below about 3e-39) passes every plane but has
+                // no window position (it saturates to the ends of i32): such a vertex goes the
+                // clipper's way, whose setup drops non-finite vertices.
+                let finite = window.inv_w.is_finite() && window.z.is_finite();
+                (if finite { 0 } else { NOT_FINITE }, window)
+            } else {
+                (code, WindowVertex::default())
+            };
         }
     });
 }
@@ -543,8 +556,9 @@ fn setup_and_bin<V: Varying>(
     let window = &scratch.window;
     // Fragment entries name pixels by a u32 index and triangles by a 31-bit one; every image and
     // index buffer this crate makes fits, and anything larger keeps to triangle records.
-    let fragments =
-        (width as u64 * height as u64) < Entry::TRIANGLE as u64 && indices.len() / 3 < Entry::SWAPPED as usize;
+    // Sides up to 2^16 also keep window coordinates (inside the guard band) far inside i32, as the
+    // small-triangle lanes' 32-bit arithmetic needs.
+    let fragments = width <= 1 << 16 && height <= 1 << 16 && indices.len() / 3 < Entry::SWAPPED as usize;
     // One chunk per task, for the same balance as the bands: triangles outside the view come in runs.
     let chunks = scratch.chunks.par_iter_mut().zip(indices.par_chunks(3 * SETUP_CHUNK)).enumerate().with_max_len(1);
     chunks.for_each(|(c, (chunk, idx))| {

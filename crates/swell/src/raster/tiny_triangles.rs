@@ -158,17 +158,24 @@ fn classify_lanes(c: &Corners, width: i32, height: i32, cull_back: bool, out: &m
         let (min_y, max_y) = (y0.min(ya).min(yb), y0.max(ya).max(yb));
         // Pixel centres in the box, clamped to the target (`setup_geometry`'s `first` and
         // `last`: an arithmetic shift is a floor division by ONE).
-        let bx0 = ((min_x - HALF + ONE - 1) >> SUBPIXEL_BITS).max(0);
-        let bx1 = ((max_x - HALF) >> SUBPIXEL_BITS).min(width - 1);
-        let by0 = ((min_y - HALF + ONE - 1) >> SUBPIXEL_BITS).max(0);
-        let by1 = ((max_y - HALF) >> SUBPIXEL_BITS).min(height - 1);
+        // Wrapping arithmetic throughout: lanes left to the general path may hold anything, and
+        // must not stop a debug build; the caller's lanes have coordinates far inside i32.
+        let bx0 = (min_x.wrapping_add(ONE - 1 - HALF) >> SUBPIXEL_BITS).max(0);
+        let bx1 = (max_x.wrapping_sub(HALF) >> SUBPIXEL_BITS).min(width - 1);
+        let by0 = (min_y.wrapping_add(ONE - 1 - HALF) >> SUBPIXEL_BITS).max(0);
+        let by1 = (max_y.wrapping_sub(HALF) >> SUBPIXEL_BITS).min(height - 1);
         let empty = (bx0 > bx1) | (by0 > by1);
-        let small = (max_x - min_x < SMALL) & (max_y - min_y < SMALL);
-        let area = (xa - x0).wrapping_mul(yb - y0).wrapping_sub((ya - y0).wrapping_mul(xb - x0));
+        // Extents as unsigned differences: exact whatever the coordinates (max >= min).
+        let extent = |lo: i32, hi: i32| (hi as u32).wrapping_sub(lo as u32);
+        let small = (extent(min_x, max_x) < SMALL as u32) & (extent(min_y, max_y) < SMALL as u32);
+        let area = xa
+            .wrapping_sub(x0)
+            .wrapping_mul(yb.wrapping_sub(y0))
+            .wrapping_sub(ya.wrapping_sub(y0).wrapping_mul(xb.wrapping_sub(x0)));
         // With y down, OpenGL's counter-clockwise front faces have negative area.
         let swapped = area < 0;
         let dropped = (area == 0) | (cull_back & !swapped);
-        let fits = (bx1 - bx0 <= 1) & (by1 - by0 <= 1);
+        let fits = (bx1.wrapping_sub(bx0) <= 1) & (by1.wrapping_sub(by0) <= 1);
         let unclipped = c.unclipped[k];
         let nothing = unclipped & (empty | (small & dropped));
         let tiny = unclipped & !empty & small & !dropped & fits;
@@ -176,7 +183,7 @@ fn classify_lanes(c: &Corners, width: i32, height: i32, cull_back: bool, out: &m
         out.class[k] = nothing as u8 * Class::Nothing as u8 + tiny as u8 * Class::Tiny as u8;
         (x1[k], x2[k]) = if swapped { (xb, xa) } else { (xa, xb) };
         (y1[k], y2[k]) = if swapped { (yb, ya) } else { (ya, yb) };
-        (px[k], py[k]) = (bx0 * ONE + HALF, by0 * ONE + HALF);
+        (px[k], py[k]) = (bx0.wrapping_mul(ONE).wrapping_add(HALF), by0.wrapping_mul(ONE).wrapping_add(HALF));
         wide[k] = tiny & (bx1 > bx0);
         tall[k] = tiny & (by1 > by0);
         out.swapped[k] = swapped;
@@ -212,10 +219,13 @@ fn edge_lanes(
     out: &mut Covers,
 ) {
     for k in 0..LANES {
-        let (dx, dy) = (b.0[k] - a.0[k], b.1[k] - a.1[k]);
+        let (dx, dy) = (b.0[k].wrapping_sub(a.0[k]), b.1[k].wrapping_sub(a.1[k]));
         // Pixels exactly on an edge count only for top and left edges.
         let bias = is_top_left(dx, dy) as i32 - 1;
-        let e = dx.wrapping_mul(p.1[k] - a.1[k]).wrapping_sub(dy.wrapping_mul(p.0[k] - a.0[k])).wrapping_add(bias);
+        let e = dx
+            .wrapping_mul(p.1[k].wrapping_sub(a.1[k]))
+            .wrapping_sub(dy.wrapping_mul(p.0[k].wrapping_sub(a.0[k])))
+            .wrapping_add(bias);
         let (sx, sy) = (dy.wrapping_mul(-ONE), dx.wrapping_mul(ONE));
         inside[0][k] &= e >= 0;
         inside[1][k] &= e.wrapping_add(sx) >= 0;

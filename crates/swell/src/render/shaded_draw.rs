@@ -249,7 +249,7 @@ impl ShadedDraw {
             let (mut lit, mut points, mut colors) =
                 ([0; SHADE_RUN], [SurfaceVarying::default(); SHADE_RUN], [Vec3::ZERO; SHADE_RUN]);
             let mut n = 0;
-            // Runs of up to SHADE_RUN visible vertices, the last one shaded after the loop.
+            // Runs of up to SHADE_RUN visible vertices, each shaded when full or at the block's end.
             let end = base + colored.len();
             for (i, seen) in visible[base..end].iter().enumerate().map(|(k, v)| (base + k, v)) {
                 if seen.load(Ordering::Relaxed) {
