@@ -83,10 +83,10 @@ impl<V> Default for DrawScratch<V> {
 
 /// One setup task's triangles and, per band, what it draws there, in submission order.
 ///
-/// A triangle whose pixel box is at most 2 x 2 (nearly every triangle of a dense mesh: 97 % of
-/// the 513² terrain's at 800 x 800) is rasterized at setup, in parallel, and binned as its covered
-/// pixels (fragment [`Entry`]s): a band then only depth-tests them. Larger triangles are kept as
-/// setup records and scanned per band. The records hold no varyings: `corners[i]` names triangle
+/// A triangle whose pixel box is at most 2 x 2 and whose extent is under 16 pixels (nearly every
+/// triangle of a dense mesh: 97 % of the 513² terrain's at 800 x 800) is rasterized at setup, in
+/// parallel, and binned as its covered pixels (fragment [`Entry`]s): a band then only depth-tests
+/// them. Other triangles are kept as setup records and scanned per band. The records hold no varyings: `corners[i]` names triangle
 /// `i`'s vertices (in its clockwise order), indices below the draw's vertex count into the
 /// caller's vertices and the others into `clipped`, the varyings of vertices made by clipping.
 /// Copying three varyings into every record made a Gouraud record half as large again for pixels
@@ -621,23 +621,9 @@ fn setup_and_bin<V: Varying>(
                 }
                 let crossed = a.0 | b.0 | d.0;
                 if crossed == 0 {
-                    let tri = setup_geometry(&[a.1, b.1, d.1], prim, width, height, cull_back);
-                    match tri {
-                        Some((tri, swapped))
-                            if fragments && tri.max_x - tri.min_x <= 1 && tri.max_y - tri.min_y <= 1 =>
-                        {
-                            // A large triangle the viewport clamps to a few pixels: binned as
-                            // fragments too, covered by the general scan (the lanes' 32 bits
-                            // do not hold its edge values).
-                            let index = prim | if swapped { Entry::SWAPPED } else { 0 };
-                            tri.scan((tri.min_y, tri.max_y), |cov| {
-                                let weights = if has_varying { tri.perspective_weights(cov.linear) } else { [0.0; 3] };
-                                let (pixel, z) = (cov.y * width + cov.x, tri.depth(cov.linear));
-                                bins[(cov.y / BAND_ROWS) as usize].push(Entry { pixel, z, index, weights });
-                            });
-                        }
-                        _ => emit(bins, tri, [t[0], t[1], t[2]]),
-                    }
+                    // Large, or small but with an extent the lanes' 32 bits do not hold (a big
+                    // triangle the viewport clamps to a few pixels): a setup record.
+                    emit(bins, setup_geometry(&[a.1, b.1, d.1], prim, width, height, cull_back), [t[0], t[1], t[2]]);
                     continue;
                 }
                 let tri = [vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize]];
