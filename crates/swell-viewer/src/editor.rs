@@ -221,7 +221,7 @@ mod tests {
     fn positions_at(scene: &Scene, t: f64) -> Vec<glam::Vec3> {
         let mut w = World::new(scene.clone()).unwrap();
         w.update(t).unwrap();
-        w.water.unwrap().mesh.positions
+        w.water.unwrap().surface.positions().to_vec()
     }
 
     #[test]

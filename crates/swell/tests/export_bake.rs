@@ -49,8 +49,9 @@ fn world(text: &str, t: f64) -> World {
     w
 }
 
-fn mesh_of(w: &World) -> &swell::mesh::SurfaceMesh {
-    &w.water.as_ref().unwrap().mesh
+/// The water's patch as bakes and exports sample it.
+fn mesh_of(w: &World) -> swell::mesh::SurfaceMesh {
+    w.patch_mesh().unwrap().expect("the scene has water")
 }
 
 // ---------------------------------------------------------------- OBJ
@@ -98,7 +99,8 @@ fn obj_gives_back_the_same_vertices_normals_uvs_and_triangles() {
     let w = world(SEA, 1.7);
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("sea.obj");
-    write_obj(&path, &world_meshes(&w)).unwrap();
+    let patch = mesh_of(&w);
+    write_obj(&path, &world_meshes(&w, Some(&patch))).unwrap();
     let back = read_obj(&path);
     let m = mesh_of(&w);
     // Shortest round-trip float text: positions and normals come back bit for bit.
@@ -173,7 +175,8 @@ fn check_gltf(doc: &serde_json::Value, bin: &[u8], w: &World) {
 fn gltf_and_glb_give_back_the_same_vertices_and_the_scene_camera() {
     let w = world(SEA, 2.25);
     let dir = tempfile::tempdir().unwrap();
-    let meshes = world_meshes(&w);
+    let patch = mesh_of(&w);
+    let meshes = world_meshes(&w, Some(&patch));
     let cam = &w.scene.camera;
 
     let gltf = dir.path().join("sea frame.gltf");
@@ -392,6 +395,8 @@ struct FoamySines {
 }
 
 impl swell::water::WaveModel for FoamySines {
+    fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
+
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
         self.waves.evaluate(grid, t, positions, normals)
     }
@@ -432,7 +437,7 @@ fn models_with_foam_get_foam_maps() {
     assert_eq!(names, ["disp", "normal", "foam"]);
     let foam = bake.manifest().foam.as_ref().expect("a bake with a foam map says what foam is");
     assert_eq!((foam.quantity.as_str(), foam.range), ("coverage", [0.0, 1.0]));
-    let grid = w.water.as_ref().unwrap().mesh.grid;
+    let grid = w.water.as_ref().unwrap().patch_grid;
     for frame in 1..=2 {
         let t = frame as f64 / 24.0;
         let foam = read_exr_y(&dir.path().join(format!("foam_{frame:04}.exr")));

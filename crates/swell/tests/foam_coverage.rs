@@ -60,15 +60,17 @@ fn top_down_ocean() -> Scene {
 
 /// Foam coverage of the displaced surface's area seen from above (see the module doc).
 fn area_coverage(world: &World) -> f64 {
-    let mesh = &world.water.as_ref().unwrap().mesh;
+    // The drawn surface: this scene's extent is the patch.
+    let s = &world.water.as_ref().unwrap().surface;
+    let (positions, foam) = (s.positions(), s.foam().expect("the ocean has foam"));
     let (mut foam_area, mut area) = (0.0f64, 0.0f64);
-    for tri in mesh.indices.chunks_exact(3) {
+    for tri in s.indices().chunks_exact(3) {
         let [a, b, c] = [0, 1, 2].map(|k| tri[k] as usize);
-        let (pa, pb, pc) = (mesh.positions[a], mesh.positions[b], mesh.positions[c]);
+        let (pa, pb, pc) = (positions[a], positions[b], positions[c]);
         let cross = (pb.x - pa.x) * (pc.z - pa.z) - (pb.z - pa.z) * (pc.x - pa.x);
-        let s = 0.5 * f64::from(cross.abs());
-        foam_area += s * f64::from(mesh.foam[a] + mesh.foam[b] + mesh.foam[c]) / 3.0;
-        area += s;
+        let t = 0.5 * f64::from(cross.abs());
+        foam_area += t * f64::from(foam[a] + foam[b] + foam[c]) / 3.0;
+        area += t;
     }
     foam_area / area
 }

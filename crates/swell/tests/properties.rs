@@ -109,8 +109,8 @@ fn render_or_refuse(text: &str, t: f64) -> Result<bool, TestCaseError> {
         return Ok(false);
     }
     if let Some(w) = &world.water {
-        prop_assert!(w.mesh.positions.iter().all(|p| p.is_finite()), "non-finite water position");
-        prop_assert!(w.mesh.normals.iter().all(|n| n.is_finite()), "non-finite water normal");
+        prop_assert!(w.surface.positions().iter().all(|p| p.is_finite()), "non-finite water position");
+        prop_assert!(w.surface.normals().iter().all(|n| n.is_finite()), "non-finite water normal");
     }
     let mut renderer = Renderer::new();
     let fb = renderer.render(&world);

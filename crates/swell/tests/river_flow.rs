@@ -58,10 +58,10 @@ fn pixels_of_the_river_change_between_frames_while_the_banks_stay() {
     let mut world = World::new(still_river()).unwrap();
     let mut renderer = Renderer::new();
     world.update(0.0).unwrap();
-    let before_mesh = world.water.as_ref().unwrap().mesh.positions.clone();
+    let before_mesh = world.water.as_ref().unwrap().surface.positions().to_vec();
     let before = renderer.render(&world).color.clone();
     world.update(0.6).unwrap();
-    let after_mesh = world.water.as_ref().unwrap().mesh.positions.clone();
+    let after_mesh = world.water.as_ref().unwrap().surface.positions().to_vec();
     let after = renderer.render(&world).color.clone();
     assert_eq!(before_mesh, after_mesh, "the banks' geometry is as before");
     // Pixels whose colour moved by more than 1 % of white: the river's, and only where water is.

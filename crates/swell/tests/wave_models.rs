@@ -1,14 +1,17 @@
 //! The conformance test every wave model runs: zero amplitude is the plane at rest, the grid is
 //! identical on one and two threads, `height_at` agrees with the evaluated grid, positions and
-//! normals are finite and normals unit length.
+//! normals are finite and normals unit length. The list of models is checked against the scene
+//! format's one list (`swell::scene::WATER_MODELS`), so a new model fails here until it is added.
 
 use glam::{Vec2, Vec3};
 use swell::math::GridSpec;
 use swell::spectrum::Dispersion;
 use swell::water::*;
 
-/// Every model, with waves (`calm = false`) or with all amplitudes zero (`calm = true`).
-fn models(calm: bool) -> Vec<(&'static str, Box<dyn WaveModel>)> {
+/// Every model, with waves (`calm = false`) or with all amplitudes zero (`calm = true`), ready to
+/// be evaluated at time `t` (s): the FFT ocean synthesised for `t`, the spring lattice stepped to
+/// 7 s (after its first drops; its surface is its state, whatever `t`).
+fn models(calm: bool, t: f64) -> Vec<(&'static str, Box<dyn WaveModel>)> {
     let a = |x: f32| if calm { 0.0 } else { x };
     let gerstner = |amp: f32, l: f32, dir: Vec2| GerstnerWave {
         amplitude: a(amp),
@@ -26,7 +29,17 @@ fn models(calm: bool) -> Vec<(&'static str, Box<dyn WaveModel>)> {
     })
     .unwrap();
     springs.advance(7.0).unwrap();
+    // A small two-cascade ocean; calm through Blender's wave_scale = 0, which scales every height.
+    let fft = if calm {
+        let blender = BlenderOcean { wave_scale: 0.0, spatial_size: 40.0, resolution: 5, ..Default::default() };
+        FftOceanParams { blender: Some(blender), ..Default::default() }
+    } else {
+        FftOceanParams { grid: 32, patch_size: 40.0, cascades: 2, ..Default::default() }
+    };
+    let mut fft = fft.build().unwrap();
+    fft.advance(t).unwrap();
     vec![
+        ("fft", fft),
         (
             "gerstner",
             Box::new(
@@ -119,8 +132,17 @@ fn evaluate(m: &dyn WaveModel, threads: usize, t: f64) -> (Vec<Vec3>, Vec<Vec3>)
 }
 
 #[test]
+fn every_model_of_the_scene_format_is_tested() {
+    let names: Vec<&str> = models(false, 0.0).iter().map(|(n, _)| *n).collect();
+    for name in swell::scene::WATER_MODELS {
+        assert!(names.contains(name), "water model {name} has no entry in this conformance test");
+    }
+    assert_eq!(names.len(), swell::scene::WATER_MODELS.len(), "{names:?}");
+}
+
+#[test]
 fn zero_amplitude_is_the_plane_at_rest() {
-    for (name, m) in models(true) {
+    for (name, m) in models(true, 3.3) {
         let (p, n) = evaluate(m.as_ref(), 2, 3.3);
         assert!(p.iter().all(|v| v.y == 0.0), "{name}: not flat");
         assert!(n.iter().all(|v| (*v - Vec3::Y).length() < 1e-6), "{name}: normals not +Y");
@@ -130,7 +152,7 @@ fn zero_amplitude_is_the_plane_at_rest() {
 
 #[test]
 fn output_is_identical_on_one_and_two_threads_and_finite() {
-    for (name, m) in models(false) {
+    for (name, m) in models(false, 2.7) {
         let one = evaluate(m.as_ref(), 1, 2.7);
         let two = evaluate(m.as_ref(), 2, 2.7);
         assert!(one == two, "{name}: thread count changed the output");
@@ -142,7 +164,7 @@ fn output_is_identical_on_one_and_two_threads_and_finite() {
 
 #[test]
 fn height_at_agrees_with_the_evaluated_grid() {
-    for (name, m) in models(false) {
+    for (name, m) in models(false, 1.9) {
         let (p, _) = evaluate(m.as_ref(), 2, 1.9);
         for v in p.iter().step_by(13) {
             let h = m.height_at(v.x, v.z, 1.9);

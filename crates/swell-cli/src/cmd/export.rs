@@ -38,9 +38,15 @@ pub fn run(a: ExportArgs) -> Result<()> {
     pool.install(|| {
         let mut world = World::new(scene)?;
         super::advance_with_progress(&mut world, frames.map_or(a.time, |r| f64::from(r.first) / a.fps))?;
+        let mut patch = world.new_patch_mesh();
         let mut write = |path: &Path, t: f64| -> Result<()> {
-            world.update(t)?;
-            let meshes = world_meshes(&world);
+            // Exports write the water's finite patch, whatever the scene draws: the models are
+            // moved and the patch sampled, and no drawn surface is displaced.
+            world.advance(t)?;
+            if let Some(p) = &mut patch {
+                world.sample_patch(p)?;
+            }
+            let meshes = world_meshes(&world, patch.as_ref());
             let camera = &world.scene.camera;
             match format {
                 Format::Obj => write_obj(path, &meshes),

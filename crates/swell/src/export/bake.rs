@@ -51,6 +51,7 @@ use super::frame_range::{FrameRange, Shard};
 use super::{write_atomically, write_exr_gray, write_exr_rgb, write_png_map, ExrCompression, NormalSpace};
 use crate::error::{Error, Result};
 use crate::math::GridSpec;
+use crate::mesh::SurfaceMesh;
 use crate::scene::World;
 
 /// Highest frame rate a bake accepts, frames per second.
@@ -220,19 +221,22 @@ impl Bake {
                  and turn or scale the patch in the engine that uses the maps",
             ));
         }
-        world.update(f64::from(settings.frames.first) / settings.fps)?;
+        // Maps sample the patch, whatever the scene draws: the drawn surface is not moved.
+        world.advance(f64::from(settings.frames.first) / settings.fps)?;
+        let mut mesh = world.new_patch_mesh().expect("a scene with [water] builds a water body");
+        world.sample_patch(&mut mesh)?;
         let water = world.water.as_ref().expect("a scene with [water] builds a water body");
-        let grid = water.mesh.grid;
+        let grid = mesh.grid;
         if settings.tile {
             check_tiles(water.model.spatial_period(), &grid)?;
         }
         let mut maps = vec![MapKind::Disp, MapKind::Normal];
-        if water.mesh.has_foam {
+        if mesh.has_foam {
             maps.push(MapKind::Foam);
         }
         let png_range_m = match settings.png_range_m {
             Some(r) => r,
-            None => auto_png_range(&water.mesh.positions, &grid),
+            None => auto_png_range(&mesh.positions, &grid),
         };
         let manifest = manifest(&spec.to_table(), &grid, &settings, &maps, png_range_m);
 
@@ -329,17 +333,19 @@ impl Bake {
     }
 
     fn capture_batch(&self, world: &mut World, frames: &[u32], out: &mut [FrameFields]) -> Result<()> {
+        let mut mesh = world.new_patch_mesh().expect("checked in prepare");
         for (&frame, fields) in frames.iter().zip(out.iter_mut()) {
-            self.capture(world, frame, fields)?;
+            self.capture(world, frame, &mut mesh, fields)?;
         }
         Ok(())
     }
 
-    /// Moves the world to `frame` and copies its fields out; refuses non-finite values.
-    fn capture(&self, world: &mut World, frame: u32, out: &mut FrameFields) -> Result<()> {
+    /// Moves the world's models to `frame`, samples the patch into `mesh` and copies its fields
+    /// out; refuses non-finite values.
+    fn capture(&self, world: &mut World, frame: u32, mesh: &mut SurfaceMesh, out: &mut FrameFields) -> Result<()> {
         let t = f64::from(frame) / self.settings.fps;
-        world.update(t)?;
-        let mesh = &world.water.as_ref().expect("checked in prepare").mesh;
+        world.advance(t)?;
+        world.sample_patch(mesh)?;
         out.frame = frame;
         let width = self.map_size().0;
         displacement(&mesh.positions, &self.grid, width, &mut out.disp);

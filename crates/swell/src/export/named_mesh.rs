@@ -5,16 +5,19 @@
 //! use swell::scene::{preset, World};
 //!
 //! let mut world = World::new(preset("sea")?)?;
-//! world.update(2.5)?;
+//! world.advance(2.5)?; // the models only: an export samples the patch, it draws nothing
+//! let patch = world.patch_mesh()?;
 //! let dir = tempfile::tempdir().unwrap();
 //! let aspect = world.scene.render.width as f32 / world.scene.render.height as f32;
-//! write_glb(&dir.path().join("sea.glb"), &world_meshes(&world), &world.scene.camera, aspect)?;
-//! write_obj(&dir.path().join("sea.obj"), &world_meshes(&world))?;
+//! let meshes = world_meshes(&world, patch.as_ref());
+//! write_glb(&dir.path().join("sea.glb"), &meshes, &world.scene.camera, aspect)?;
+//! write_obj(&dir.path().join("sea.obj"), &meshes)?;
 //! # Ok::<(), swell::Error>(())
 //! ```
 
 use glam::{Vec2, Vec3};
 
+use crate::mesh::SurfaceMesh;
 use crate::scene::World;
 
 /// One triangle mesh to export, borrowed from wherever it lives.
@@ -38,12 +41,12 @@ pub struct NamedMesh<'a> {
     pub base_color: Vec3,
 }
 
-/// The meshes of `world` at the time of its last [`World::update`], in a fixed order: the water
-/// surface (named `water`), then any other surfaces the scene has.
-pub fn world_meshes(world: &World) -> Vec<NamedMesh<'_>> {
+/// The meshes of `world` in a fixed order: the water's patch `water` (sampled by
+/// [`World::patch_mesh`] or [`World::sample_patch`]; exports write the finite patch whatever the
+/// scene draws), then any other surfaces the scene has.
+pub fn world_meshes<'a>(world: &'a World, water: Option<&'a SurfaceMesh>) -> Vec<NamedMesh<'a>> {
     let mut meshes = Vec::new();
-    if let Some(w) = &world.water {
-        let m = &w.mesh;
+    if let (Some(w), Some(m)) = (&world.water, water) {
         meshes.push(NamedMesh {
             name: "water",
             positions: &m.positions,

@@ -43,7 +43,7 @@ pub struct Renderer {
     water_draw: shaded_draw::ShadedDraw,
     /// The mirrored terrain the water reflects.
     reflection_scratch: reflection_pass::Scratch,
-    /// The unbounded sea's camera-following mesh.
+    /// The unbounded sea's rings as this image filters them (the rings are the world's).
     sea: sea_lod::SeaLod,
     /// The sky ready to look up, rebuilt when `[sky]` changes (a Preetham sky is tabulated).
     sky: Option<crate::scene::SkyRadiance>,
@@ -98,31 +98,32 @@ impl Renderer {
             far_land_pass::draw(fb, &frame, terrain, &mut self.far_land_draw, sea);
             if let Some(water) = &world.water {
                 let water_box = (!sea)
-                    .then(|| reflection_pass::water_screen_box(&water.mesh.positions, frame.clip_from_world))
+                    .then(|| reflection_pass::water_screen_box(water.surface.positions(), frame.clip_from_world))
                     .flatten();
                 let draw = &mut self.terrain_draw;
                 reflection = reflection_pass::draw(&mut self.reflection_scratch, &frame, terrain, draw, water_box);
             }
         }
         if let Some(water) = &world.water {
-            let sea = match water.extent {
-                WaterExtent::Unbounded => self.sea.update(water, &scene.camera, world.time(), h),
-                WaterExtent::Patch => None,
-            };
-            let mesh = match sea {
-                Some(sea_lod::SeaMesh { clipmap: c, unresolved }) => shaded_draw::ShadedMesh {
-                    positions: &c.positions,
-                    normals: &c.normals,
-                    foam: c.has_foam.then_some(&c.foam[..]),
-                    unresolved: Some(unresolved),
-                    indices: &c.indices,
-                },
+            let surface = &water.surface;
+            let mesh = match surface.rings() {
+                // Only what depends on the image is done here: the footprint filter.
+                Some(rings) => {
+                    let sea = self.sea.filter(rings, &water.slopes, water.placement.scale, &scene.camera, h);
+                    shaded_draw::ShadedMesh {
+                        positions: &rings.positions,
+                        normals: sea.normals,
+                        foam: surface.foam(),
+                        unresolved: Some(sea.unresolved),
+                        indices: &rings.indices,
+                    }
+                }
                 None => shaded_draw::ShadedMesh {
-                    positions: &water.mesh.positions,
-                    normals: &water.mesh.normals,
-                    foam: water.mesh.has_foam.then_some(&water.mesh.foam[..]),
+                    positions: surface.positions(),
+                    normals: surface.normals(),
+                    foam: surface.foam(),
                     unresolved: None,
-                    indices: &water.mesh.indices,
+                    indices: surface.indices(),
                 },
             };
             water_pass::draw(
@@ -134,7 +135,7 @@ impl Renderer {
                 world.terrain.as_ref(),
                 reflection.as_ref(),
             );
-            if sea.is_some() {
+            if water.extent == WaterExtent::Unbounded {
                 let lobe = crate::shading::Lobe::of(water.material.shading);
                 far_field_pass::draw(fb, &frame, &scene.camera, water, &water.slopes, lobe);
             }
@@ -142,7 +143,8 @@ impl Renderer {
         // After every geometry pass: the sky fills only what they left at the far plane.
         sky_pass::draw(fb, &scene.camera, frame.env.sky, frame.env.sun.as_ref());
         if let Some(water) = &world.water {
-            overlay_pass::draw(fb, &frame, &water.mesh, scene.render.wireframe, scene.render.normals);
+            let scale = water.placement.scale;
+            overlay_pass::draw(fb, &frame, &water.surface, scale, scene.render.wireframe, scene.render.normals);
         }
         if ss > 1 {
             let hi = self.supersampled.as_ref().expect("rendered above");

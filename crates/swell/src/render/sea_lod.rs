@@ -20,64 +20,63 @@ use rayon::prelude::*;
 
 use crate::math::{Isa, Lanes, Vec3Lanes, LANES};
 use crate::mesh::Clipmap;
-use crate::scene::{Camera, WaterBody};
-use crate::shading::UnresolvedSlopes;
+use crate::scene::Camera;
+use crate::water::UnresolvedSlopes;
 
-/// The renderer's unbounded-sea mesh, kept between frames (rebuilt when the LOD settings change).
+/// The renderer's per-image state of the unbounded sea: the rings' normals with the unresolved
+/// slopes moved out of them, and those slopes per vertex, kept between frames so that steady
+/// frames do not allocate. The rings themselves are the world's
+/// ([`crate::scene::WaterBody::surface`]): only what depends on the image lives here.
 #[derive(Default)]
 pub struct SeaLod {
-    /// The rings and the (levels, ring cells, spacing) they were built with.
-    clipmap: Option<((u32, u32, u32), Clipmap)>,
+    /// The rings' normals keeping only the resolved share of their tilt.
+    normals: Vec<Vec3>,
     /// Slope variance each vertex's pixel leaves unresolved ([`FootprintFilter::variance_lanes`]).
     unresolved: Vec<f32>,
 }
 
-/// The unbounded sea's mesh for one frame: the displaced rings, and each vertex's unresolved
-/// slope variance for the shading to interpolate.
+/// What the unbounded sea's rings get for one image: normals filtered for it, and each vertex's
+/// unresolved slope variance for the shading to interpolate (positions and triangles stay the
+/// world's).
 #[derive(Clone, Copy)]
 pub struct SeaMesh<'a> {
-    /// The rings, in world space.
-    pub clipmap: &'a Clipmap,
+    /// Unit normals keeping the resolved share of each vertex's tilt.
+    pub normals: &'a [Vec3],
     /// Slope variance (both axes, >= 0) the pixel at each vertex leaves unresolved.
     pub unresolved: &'a [f32],
 }
 
 impl SeaLod {
-    /// Moves the rings under `camera`, displaces them with `water`'s model at time `t` (s),
-    /// places them in the world and moves the slopes no pixel of a `rows`-row image resolves from
-    /// their normals to the shading (each vertex's share in [`SeaMesh::unresolved`]); returns
-    /// them, or `None` when the settings cannot make a mesh (validation refuses those first, so
-    /// the caller then draws the patch).
-    pub fn update(&mut self, water: &WaterBody, camera: &Camera, t: f64, rows: u32) -> Option<SeaMesh<'_>> {
-        let lod = water.lod;
-        let spacing = lod.spacing.unwrap_or_else(|| {
-            let s = water.mesh.grid.spacing();
-            s.x.min(s.y)
-        });
-        let key = (lod.levels, lod.ring_cells, spacing.to_bits());
-        if self.clipmap.as_ref().map(|(k, _)| *k) != Some(key) {
-            self.clipmap = Some((key, Clipmap::new(lod.levels, lod.ring_cells, spacing).ok()?));
-        }
-        let (_, clipmap) = self.clipmap.as_mut()?;
-        let eye = water.placement.to_local_xz(Vec2::new(camera.eye.x, camera.eye.z));
-        clipmap.follow(eye);
-        clipmap.displace(water.model.as_ref(), t);
-        water.placement.apply_to(&mut clipmap.positions, &mut clipmap.normals);
-        let filter = FootprintFilter::new(&water.slopes, camera, rows, clipmap, water.placement.scale);
-        let total = water.slopes.total();
+    /// Moves the slopes that no pixel of a `rows`-row image seen by `camera` resolves from the
+    /// normals of `rings` (the world's, displaced and placed; `world_scale` the patch's uniform
+    /// scale) to the shading (each vertex's share in [`SeaMesh::unresolved`]), for a sea whose
+    /// slope spectrum is `slopes` (world units).
+    pub fn filter<'a>(
+        &'a mut self,
+        rings: &'a Clipmap,
+        slopes: &UnresolvedSlopes,
+        world_scale: f32,
+        camera: &Camera,
+        rows: u32,
+    ) -> SeaMesh<'a> {
+        let count = rings.positions.len();
         self.unresolved.clear();
-        self.unresolved.resize(clipmap.positions.len(), 0.0);
-        if total > 0.0 {
-            let Clipmap { positions, normals, .. } = &mut *clipmap;
-            let tasks = normals.par_chunks_mut(VERTEX_TASK).zip(self.unresolved.par_chunks_mut(VERTEX_TASK));
-            tasks.zip(positions.par_chunks(VERTEX_TASK)).for_each(|((n, u), p)| {
-                Isa::run_widest(
-                    #[inline(always)]
-                    || filter.move_to_shading(p, n, u, total),
-                )
-            });
+        self.unresolved.resize(count, 0.0);
+        let total = slopes.total();
+        if total <= 0.0 {
+            return SeaMesh { normals: &rings.normals, unresolved: &self.unresolved };
         }
-        Some(SeaMesh { clipmap, unresolved: &self.unresolved })
+        self.normals.resize(count, Vec3::Y);
+        let filter = FootprintFilter::new(slopes, camera, rows, rings, world_scale);
+        let tasks = self.normals.par_chunks_mut(VERTEX_TASK).zip(self.unresolved.par_chunks_mut(VERTEX_TASK));
+        let inputs = rings.positions.par_chunks(VERTEX_TASK).zip(rings.normals.par_chunks(VERTEX_TASK));
+        tasks.zip(inputs).for_each(|((n, u), (p, src))| {
+            Isa::run_widest(
+                #[inline(always)]
+                || filter.move_to_shading(p, src, n, u, total),
+            )
+        });
+        SeaMesh { normals: &self.normals, unresolved: &self.unresolved }
     }
 }
 
@@ -151,16 +150,25 @@ impl<'a> FootprintFilter<'a> {
         self.slopes.unresolved_lanes(footprint.max(mesh) * FOOTPRINT_WIDTH)
     }
 
-    /// Moves the unresolved slopes of the vertices at `positions` from their `normals` to the
-    /// shading: `unresolved[i]` gets [`Self::variance_lanes`] and normal `i` keeps the resolved share
-    /// of the tilt, its slope (dh/dx, dh/dz) = -(n.x, n.z) / n.y scaled by the square root of
-    /// that share (of `total`, the whole spectrum's variance). [`LANES`] vertices at a time.
+    /// Moves the unresolved slopes of the vertices at `positions` from their normals `src` to
+    /// the shading: `unresolved[i]` gets [`Self::variance_lanes`] and `normals[i]` the normal
+    /// keeping the resolved share of the tilt, its slope (dh/dx, dh/dz) = -(n.x, n.z) / n.y
+    /// scaled by the square root of that share (of `total`, the whole spectrum's variance).
+    /// [`LANES`] vertices at a time.
     #[inline(always)]
-    fn move_to_shading(&self, positions: &[Vec3], normals: &mut [Vec3], unresolved: &mut [f32], total: f32) {
-        for ((p, n), u) in positions.chunks(LANES).zip(normals.chunks_mut(LANES)).zip(unresolved.chunks_mut(LANES)) {
+    fn move_to_shading(
+        &self,
+        positions: &[Vec3],
+        src: &[Vec3],
+        normals: &mut [Vec3],
+        unresolved: &mut [f32],
+        total: f32,
+    ) {
+        let blocks = positions.chunks(LANES).zip(src.chunks(LANES));
+        for (((p, s), n), u) in blocks.zip(normals.chunks_mut(LANES)).zip(unresolved.chunks_mut(LANES)) {
             // Lanes past the block repeat its first vertex and are dropped.
             let at = |i: usize| if i < p.len() { i } else { 0 };
-            let normal = Vec3Lanes::from_fn(|i| n[at(i)]);
+            let normal = Vec3Lanes::from_fn(|i| s[at(i)]);
             let variance = self.variance_lanes(Vec3Lanes::from_fn(|i| p[at(i)]), normal);
             let keep = (1.0 - variance / total).max(0.0).sqrt();
             let tilted = Vec3Lanes { x: normal.x * keep, y: normal.y.abs().max(1e-3), z: normal.z * keep };
@@ -185,9 +193,7 @@ mod tests {
         for name in ["sea", "ocean"] {
             let mut world = World::new(preset(name).unwrap()).unwrap();
             world.update(2.5).unwrap();
-            let mut lod = SeaLod::default();
-            let water = world.water.as_ref().unwrap();
-            let clipmap = lod.update(water, &world.scene.camera, world.time(), 720).unwrap().clipmap;
+            let clipmap = world.water.as_ref().unwrap().surface.rings().expect("an unbounded sea");
             let mut worst = 0.0f32;
             for (i, p) in clipmap.positions.iter().enumerate().step_by(97) {
                 let h = world.water_height_at(p.x, p.z).unwrap();
@@ -202,9 +208,8 @@ mod tests {
     fn far_pixels_leave_more_slopes_unresolved_than_near_ones() {
         let world = World::new(preset("ocean").unwrap()).unwrap();
         let water = world.water.as_ref().unwrap();
-        let mut lod = SeaLod::default();
         let camera = world.scene.camera;
-        let clipmap = lod.update(water, &camera, 0.0, 720).unwrap().clipmap;
+        let clipmap = water.surface.rings().expect("an unbounded sea");
         let f = FootprintFilter::new(&water.slopes, &camera, 720, clipmap, 1.0);
         let at = |d: f32| f.variance(camera.eye + Vec3::new(0.0, -camera.eye.y, -d), Vec3::Y);
         let (near, mid, far) = (at(5.0), at(200.0), at(3000.0));
@@ -218,20 +223,19 @@ mod tests {
     fn isa_builds_agree() {
         let world = World::new(preset("ocean").unwrap()).unwrap();
         let water = world.water.as_ref().unwrap();
-        let mut lod = SeaLod::default();
         let camera = world.scene.camera;
-        let clipmap = lod.update(water, &camera, 0.0, 720).unwrap().clipmap.clone();
-        let f = FootprintFilter::new(&water.slopes, &camera, 720, &clipmap, 1.0);
+        let clipmap = water.surface.rings().expect("an unbounded sea");
+        let f = FootprintFilter::new(&water.slopes, &camera, 720, clipmap, 1.0);
         let total = water.slopes.total();
         // 1000 vertices from every ring (a block that ends mid-batch), near and far.
         let step = clipmap.positions.len() / 1000;
         let positions: Vec<Vec3> = clipmap.positions.iter().step_by(step).take(1000).copied().collect();
         let start: Vec<Vec3> = clipmap.normals.iter().step_by(step).take(1000).copied().collect();
         let run = |isa: Isa| {
-            let (mut normals, mut unresolved) = (start.clone(), vec![0.0f32; positions.len()]);
+            let (mut normals, mut unresolved) = (vec![Vec3::ZERO; positions.len()], vec![0.0f32; positions.len()]);
             isa.run(
                 #[inline(always)]
-                || f.move_to_shading(&positions, &mut normals, &mut unresolved, total),
+                || f.move_to_shading(&positions, &start, &mut normals, &mut unresolved, total),
             );
             (normals, unresolved)
         };

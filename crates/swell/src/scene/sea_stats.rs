@@ -98,8 +98,8 @@ mod tests {
         let s = scene("wind_speed = 16.0\ncascades = 3\nchoppiness = 1.3\n");
         let stats = sea_stats(&s, 9.0).unwrap();
         let mut world = World::new(s).unwrap();
-        world.update(9.0).unwrap();
-        let mesh = &world.water.as_ref().unwrap().mesh;
+        world.advance(9.0).unwrap();
+        let mesh = world.patch_mesh().unwrap().unwrap();
         let n = mesh.positions.len() as f64;
         let mean = mesh.positions.iter().map(|p| f64::from(p.y)).sum::<f64>() / n;
         let var = mesh.positions.iter().map(|p| (f64::from(p.y) - mean).powi(2)).sum::<f64>() / n;

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use super::WaterModelSpec;
 use crate::error::{Error, Result};
+use crate::math::GridSpec;
 
 /// How far the water reaches.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -36,23 +37,12 @@ impl WaterExtent {
     pub const NAMES: &'static [&'static str] = &["unbounded", "patch"];
 
     /// The extent a scene gets when it does not say: unbounded for the models defined over the
-    /// whole plane (FFT ocean, whose cascades tile; both Gerstner forms, wave sets, sines, Airy,
-    /// steep sines, noise), a patch for water that is finite by nature (the radial pool, the
-    /// spring lattice, the river) and for any water held by terrain (`has_terrain`: a lake or a
-    /// coast ends where its terrain does).
+    /// whole plane ([`crate::water::ModelParams::defined_everywhere`]: the FFT ocean, whose
+    /// cascades tile, and the closed forms), a patch for water that is finite by nature (the
+    /// radial pool, the spring lattice, the river) and for any water held by terrain
+    /// (`has_terrain`: a lake or a coast ends where its terrain does).
     pub fn default_for(model: &WaterModelSpec, has_terrain: bool) -> Self {
-        let everywhere = matches!(
-            model,
-            WaterModelSpec::Fft(_)
-                | WaterModelSpec::Gerstner(_)
-                | WaterModelSpec::Tessendorf(_)
-                | WaterModelSpec::WaveSet(_)
-                | WaterModelSpec::Sines(_)
-                | WaterModelSpec::Airy(_)
-                | WaterModelSpec::SteepSines(_)
-                | WaterModelSpec::Noise(_)
-        );
-        if everywhere && !has_terrain {
+        if model.params().defined_everywhere() && !has_terrain {
             WaterExtent::Unbounded
         } else {
             WaterExtent::Patch
@@ -60,14 +50,22 @@ impl WaterExtent {
     }
 
     /// Checks that `model` can be unbounded when this extent asks for it: the finite-by-nature
-    /// models cannot (key `water.extent`, the value and the valid set named).
+    /// models cannot (key `water.extent`, the value, the model and the valid set named).
     pub fn validate(self, model: &WaterModelSpec) -> Result<()> {
-        let finite = matches!(model, WaterModelSpec::Radial(_) | WaterModelSpec::Springs(_) | WaterModelSpec::River(_));
-        if self == WaterExtent::Unbounded && finite {
+        if self == WaterExtent::Unbounded && !model.params().defined_everywhere() {
+            let finite: Vec<&str> = crate::scene::WATER_MODELS
+                .iter()
+                .filter(|name| WaterModelSpec::default_for(name).is_some_and(|m| !m.params().defined_everywhere()))
+                .copied()
+                .collect();
             return Err(Error::invalid(
                 "water.extent",
-                "\"unbounded\" is not possible for this model, which is finite by nature (radial, springs, river); \
-                 valid: \"patch\"",
+                format!(
+                    "\"unbounded\" is not possible for model \"{}\", which is finite by nature (as are {}); \
+                     valid: \"patch\"",
+                    model.name(),
+                    finite.join(", ")
+                ),
             ));
         }
         Ok(())
@@ -107,6 +105,17 @@ impl Default for LodSettings {
 }
 
 impl LodSettings {
+    /// The finest ring's vertex spacing (m), the one default of `[water.lod]` that depends on the
+    /// scene, resolved here once for every user: `spacing` when given, else the patch's smaller
+    /// cell side (so the sea near the eye is sampled as the patch was), clamped to
+    /// [`LOD_SPACING_M`] so that any valid patch gives valid rings.
+    pub fn resolved_spacing(&self, patch: &GridSpec) -> f32 {
+        self.spacing.unwrap_or_else(|| {
+            let s = patch.spacing();
+            s.x.min(s.y).clamp(LOD_SPACING_M.0, LOD_SPACING_M.1)
+        })
+    }
+
     /// Checks every key, naming it (`water.lod.levels`), its value and the valid range.
     pub fn validate(&self) -> Result<()> {
         if !(1..=MAX_LOD_LEVELS).contains(&self.levels) {
@@ -158,11 +167,8 @@ mod tests {
         for model in crate::scene::WATER_MODELS {
             let s = scene("", model).unwrap();
             let w = s.water.as_ref().unwrap();
-            let expected = if ["radial", "springs", "river"].contains(model) {
-                WaterExtent::Patch
-            } else {
-                WaterExtent::Unbounded
-            };
+            let expected =
+                if !w.model.params().defined_everywhere() { WaterExtent::Patch } else { WaterExtent::Unbounded };
             assert_eq!(s.water_extent(), Some(expected), "{model}");
             assert_eq!(WaterExtent::default_for(&w.model, true), WaterExtent::Patch, "{model}");
         }

@@ -307,7 +307,7 @@ mod tests {
             for t in [0.0, 1.25, 0.5] {
                 world.update(t).unwrap();
                 let (pos, nrm) = grid_of(&mut water, t);
-                let mesh = &world.water.as_ref().unwrap().mesh;
+                let mesh = world.patch_mesh().unwrap().unwrap();
                 assert_eq!(pos, mesh.positions, "{} t = {t}", p.name);
                 assert_eq!(nrm, mesh.normals, "{} t = {t}", p.name);
                 let pts = [Vec2::new(1.5, -2.0), Vec2::new(-7.0, 3.25)];
@@ -354,7 +354,7 @@ mod tests {
         let mut world = World::new(scene).unwrap();
         world.update(0.75).unwrap();
         let (pos, _) = grid_of(&mut water, 0.75);
-        assert_eq!(pos, world.water.as_ref().unwrap().mesh.positions);
+        assert_eq!(pos, world.patch_mesh().unwrap().unwrap().positions);
         let pts: Vec<Vec2> = pos.iter().step_by(37).map(|p| Vec2::new(p.x, p.z)).collect();
         let mut h = vec![0.0; pts.len()];
         water.heights_at(0.75, &pts, &mut h).unwrap();

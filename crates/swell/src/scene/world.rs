@@ -1,20 +1,25 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
 use super::{FoamPattern, Texture};
-use super::{LodSettings, Scene, TerrainBody, WaterExtent, WaterMaterial, WaterPlacement};
+use super::{Scene, TerrainBody, WaterExtent, WaterMaterial, WaterPlacement};
 use crate::error::Result;
-use crate::mesh::SurfaceMesh;
-use crate::shading::UnresolvedSlopes;
-use crate::water::WaveModel;
+use crate::math::GridSpec;
+use crate::mesh::{Clipmap, DrawnSurface, SurfaceMesh};
+use crate::water::{UnresolvedSlopes, WaveModel};
 
-/// The water of a [`World`]: the model, the mesh it displaces and the material it is drawn with.
+/// The water of a [`World`]: the model, the surface that is drawn and the material it is drawn
+/// with.
 pub struct WaterBody {
     /// The wave model, built from the scene. It works in the patch's own frame: query it through
     /// [`World::water_height_at`] for world coordinates when the patch is turned or scaled.
     pub model: Box<dyn WaveModel>,
-    /// The displaced grid in world coordinates, updated by [`World::update`] (its `grid` is the
-    /// patch's own, local grid; see [`WaterPlacement`]).
-    pub mesh: SurfaceMesh,
+    /// The surface a frame draws, in world coordinates, moved by [`World::update`]: the patch for
+    /// `extent = "patch"`, the rings around the scene's camera for an unbounded sea. The one
+    /// owner of the drawn water: the renderer and its overlays draw exactly this.
+    pub surface: DrawnSurface,
+    /// The patch's own (local) `size` x `cells` grid: what bakes and exports sample, whatever is
+    /// drawn ([`World::sample_patch`]).
+    pub patch_grid: GridSpec,
     /// Where the patch sits: the map from the model's frame to the world.
     pub placement: WaterPlacement,
     /// How it looks.
@@ -24,21 +29,18 @@ pub struct WaterBody {
     /// The structure of its foam (`foam_texture`), loaded or generated.
     pub foam_pattern: FoamPattern,
     /// How far the water reaches ([`crate::scene::Scene::water_extent`]): an unbounded sea is
-    /// drawn by the renderer from a camera-following mesh ([`crate::mesh::Clipmap`]) and a far
-    /// field, the patch `mesh` staying what bakes and exports sample.
+    /// drawn from camera-following rings ([`crate::mesh::Clipmap`]) and a far field beyond them.
     pub extent: WaterExtent,
-    /// `[water.lod]`: the camera-following mesh's settings.
-    pub lod: LodSettings,
-    /// The model's slope spectrum, for filtering what a pixel cannot resolve.
+    /// The model's slope spectrum in world units, for filtering what a pixel cannot resolve.
     pub slopes: UnresolvedSlopes,
 }
 
 /// Refuses a mesh holding NaN or infinity, so it never reaches the rasterizer or a file. Validation
 /// bounds every parameter, so this only fires on combinations the bounds do not foresee.
-fn check_finite_mesh(mesh: &SurfaceMesh, t: f64) -> Result<()> {
+fn check_finite_mesh(positions: &[glam::Vec3], normals: &[glam::Vec3], t: f64) -> Result<()> {
     use rayon::prelude::*;
     let finite = |v: &glam::Vec3| v.is_finite();
-    if mesh.positions.par_iter().all(finite) && mesh.normals.par_iter().all(finite) {
+    if positions.par_iter().all(finite) && normals.par_iter().all(finite) {
         Ok(())
     } else {
         Err(crate::Error::Unstable(format!(
@@ -71,8 +73,17 @@ impl World {
         let water = match &scene.water {
             Some(spec) => {
                 let model = spec.model.build()?;
-                let mesh = SurfaceMesh::new(spec.surface.grid()?);
+                let patch_grid = spec.surface.grid()?;
                 let placement = spec.surface.placement()?;
+                let extent = scene.water_extent().expect("the scene has water");
+                let surface = match extent {
+                    WaterExtent::Patch => DrawnSurface::Patch(SurfaceMesh::new(patch_grid)),
+                    WaterExtent::Unbounded => {
+                        let lod = spec.surface.lod;
+                        let spacing = lod.resolved_spacing(&patch_grid);
+                        DrawnSurface::Rings(Clipmap::new(lod.levels, lod.ring_cells, spacing)?)
+                    }
+                };
                 // A flowing model (the river) slides a texture with its flow.
                 let material = spec.material.with_flow(spec.model.params().surface_flow(), &placement);
                 let texture = material.load_texture()?;
@@ -84,16 +95,15 @@ impl World {
                     c.0 /= placement.scale;
                 }
                 let slopes = UnresolvedSlopes::from_components(&components);
-                let extent = scene.water_extent().expect("the scene has water");
                 Some(WaterBody {
                     model,
-                    mesh,
+                    surface,
+                    patch_grid,
                     placement,
                     material,
                     texture,
                     foam_pattern,
                     extent,
-                    lod: spec.surface.lod,
                     slopes,
                 })
             }
@@ -112,19 +122,62 @@ impl World {
         scene.water != self.scene.water || scene.terrain != self.scene.terrain
     }
 
-    /// Moves every model to time `t` (s) and displaces the meshes.
+    /// Moves every model to time `t` (s) and the drawn water surface with it, once: the rings of
+    /// an unbounded sea follow the scene's camera, then the surface is displaced, placed in the
+    /// world, foamed and checked for non-finite values.
     ///
-    /// Fails only when a time-stepped model became unstable; the meshes then keep the last good
-    /// frame.
+    /// Fails only when a model became unstable or produced non-finite values; the surface then
+    /// keeps the last good frame's buffers.
     pub fn update(&mut self, t: f64) -> Result<()> {
+        self.advance(t)?;
+        if let Some(w) = &mut self.water {
+            let eye = self.scene.camera.eye;
+            w.surface.follow(w.placement.to_local_xz(glam::Vec2::new(eye.x, eye.z)));
+            w.surface.displace(w.model.as_ref(), t);
+            let (positions, normals) = w.surface.positions_and_normals_mut();
+            w.placement.apply_to(positions, normals);
+            check_finite_mesh(positions, normals, t)?;
+        }
+        Ok(())
+    }
+
+    /// Moves every model to time `t` (s) without touching the drawn surface: for bakes and
+    /// exports, which sample the patch ([`World::sample_patch`]) and draw nothing. The drawn
+    /// surface keeps the time of the last [`World::update`] until the next one.
+    pub fn advance(&mut self, t: f64) -> Result<()> {
         if let Some(w) = &mut self.water {
             w.model.advance(t)?;
-            w.mesh.displace(w.model.as_ref(), t);
-            w.placement.apply(&mut w.mesh);
-            check_finite_mesh(&w.mesh, t)?;
         }
         self.time = t;
         Ok(())
+    }
+
+    /// A mesh over the water's patch ([`WaterBody::patch_grid`]), at rest: the buffer
+    /// [`World::sample_patch`] fills. `None` without water.
+    pub fn new_patch_mesh(&self) -> Option<SurfaceMesh> {
+        self.water.as_ref().map(|w| SurfaceMesh::new(w.patch_grid))
+    }
+
+    /// The water's patch at the time of the last [`World::update`] or [`World::advance`], in a new
+    /// mesh ([`World::sample_patch`] refills one); `None` without water.
+    pub fn patch_mesh(&self) -> Result<Option<SurfaceMesh>> {
+        let Some(mut mesh) = self.new_patch_mesh() else { return Ok(None) };
+        self.sample_patch(&mut mesh)?;
+        Ok(Some(mesh))
+    }
+
+    /// Displaces `mesh` (made by [`World::new_patch_mesh`]; another grid is replaced by the
+    /// patch's) as the water's patch at the time of the last [`World::update`] or
+    /// [`World::advance`], placed in the world, with foam, and checked for non-finite values:
+    /// what bakes and exports write, whatever extent is drawn. Without water, nothing changes.
+    pub fn sample_patch(&self, mesh: &mut SurfaceMesh) -> Result<()> {
+        let Some(w) = &self.water else { return Ok(()) };
+        if mesh.grid != w.patch_grid {
+            *mesh = SurfaceMesh::new(w.patch_grid);
+        }
+        mesh.displace(w.model.as_ref(), self.time);
+        w.placement.apply(mesh);
+        check_finite_mesh(&mesh.positions, &mesh.normals, self.time)
     }
 
     /// Depth (m) of the ground below the water at rest (y = 0) at world (x, z): positive under
@@ -204,7 +257,7 @@ mod tests {
     fn the_mesh_is_turned_and_scaled_about_the_centre_and_agrees_with_the_height_query() {
         let plain = sea("center = [4.0, -2.0]");
         let placed = sea("center = [4.0, -2.0]\nyaw_deg = 90.0\nuniform_scale = 2.0");
-        let (a, b) = (&plain.water.as_ref().unwrap().mesh, &placed.water.as_ref().unwrap().mesh);
+        let (a, b) = (plain.patch_mesh().unwrap().unwrap(), placed.patch_mesh().unwrap().unwrap());
         let c = Vec3::new(4.0, 0.0, -2.0);
         for k in 0..a.positions.len() {
             let d = a.positions[k] - c;
@@ -257,7 +310,8 @@ mod tests {
         let after = w.water_height_at(2.0, -3.0).unwrap();
         assert!((before - after - 0.5).abs() < 2e-3, "{before} -> {after}");
         // The mesh shows it: its lowest vertex is at least the dent deep.
-        let lowest = w.water.as_ref().unwrap().mesh.positions.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+        let surface = &w.water.as_ref().unwrap().surface;
+        let lowest = surface.positions().iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
         assert!(lowest <= after + 1e-4);
         assert!(w.disturb_water(0.0, 0.0, -1.0, 1.0).is_err());
         // Closed-form water has no state to dent.

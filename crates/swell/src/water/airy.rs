@@ -15,6 +15,7 @@ use std::f32::consts::TAU;
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
+use super::slope_spectrum::push_wave_slopes;
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{PointWave, SurfacePoint, WaveModel};
 use super::ModelParams;
@@ -117,6 +118,11 @@ impl Airy {
 }
 
 impl ModelParams for AiryParams {
+    /// Everywhere: a sum of sines, a closed form of (x, z).
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         AiryParams::validate(self, "water")
     }
@@ -140,10 +146,7 @@ impl PointWave for Airy {
 
 impl WaveModel for Airy {
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
-        for w in &self.params.waves {
-            let k = std::f32::consts::TAU / w.wavelength;
-            out.push((k, 0.5 * (w.amplitude * k).powi(2)));
-        }
+        push_wave_slopes(self.params.waves.iter().map(|w| (w.amplitude, w.wavelength)), out);
     }
 
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {

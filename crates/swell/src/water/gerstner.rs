@@ -23,6 +23,7 @@ use std::f32::consts::TAU;
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
+use super::slope_spectrum::push_wave_slopes;
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
 use super::ModelParams;
@@ -193,6 +194,11 @@ pub struct GerstnerSpec {
 }
 
 impl ModelParams for GerstnerSpec {
+    /// Everywhere: a sum of trochoids, a closed form of (x, z).
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         Gerstner::check(&self.waves)
     }
@@ -216,10 +222,7 @@ impl PointWave for Gerstner {
 
 impl WaveModel for Gerstner {
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
-        for w in &self.waves {
-            let k = std::f32::consts::TAU / w.wavelength;
-            out.push((k, 0.5 * (w.amplitude * k).powi(2)));
-        }
+        push_wave_slopes(self.waves.iter().map(|w| (w.amplitude, w.wavelength)), out);
     }
 
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {

@@ -25,6 +25,7 @@ use std::f32::consts::TAU;
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
+use super::slope_spectrum::push_wave_slopes;
 use super::trochoidal_sum::{Phases, Trochoid, TrochoidalSum, MAX_TROCHOIDAL_WAVES};
 use super::wave_model::{height_by_inversion, PointWave, SurfacePoint, WaveModel};
 use super::ModelParams;
@@ -164,6 +165,11 @@ impl GerstnerTessendorf {
 }
 
 impl ModelParams for TessendorfParams {
+    /// Everywhere: a sum of trochoids, a closed form of (x, z).
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         TessendorfParams::validate(self, "water")
     }
@@ -204,10 +210,7 @@ impl PointWave for GerstnerTessendorf {
 
 impl WaveModel for GerstnerTessendorf {
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
-        for w in &self.params.waves {
-            let k = std::f32::consts::TAU / w.wavelength;
-            out.push((k, 0.5 * (w.amplitude * k).powi(2)));
-        }
+        push_wave_slopes(self.params.waves.iter().map(|w| (w.amplitude, w.wavelength)), out);
     }
 
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {

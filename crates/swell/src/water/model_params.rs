@@ -59,6 +59,13 @@ pub trait ModelParams {
         None
     }
 
+    /// Whether the model's surface is defined over the whole plane y = 0 (a closed form of (x, z),
+    /// or cascades that tile), so that it can be an unbounded sea reaching the horizon
+    /// (`[water] extent = "unbounded"`, the default for such models without terrain), or finite by
+    /// nature (a pool, a lattice, a river between banks), which can only be a patch. Required,
+    /// with no default: adding a model makes its author decide.
+    fn defined_everywhere(&self) -> bool;
+
     /// Whether the built model keeps a state that a click or a stone can disturb
     /// ([`WaveModel::disturb`] returns true). Lets a caller decide without building the model.
     fn takes_disturbances(&self) -> bool {

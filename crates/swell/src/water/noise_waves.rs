@@ -113,6 +113,11 @@ impl NoiseWaves {
 }
 
 impl ModelParams for NoiseParams {
+    /// Everywhere: Perlin fBm is defined at every (x, z).
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         NoiseParams::validate(self, "water")
     }
@@ -148,6 +153,9 @@ impl PointWave for NoiseWaves {
 }
 
 impl WaveModel for NoiseWaves {
+    /// Nothing: perlin fBm has no list of waves to split at a cut-off: its octaves are shaded as sampled.
+    fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
+
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
         evaluate_pointwise(self, grid, t, positions, normals);
     }

@@ -70,6 +70,11 @@ impl RadialWave {
 }
 
 impl ModelParams for RadialWaveParams {
+    /// Finite: paper 002's pool is the square [-1, 1]^2 around its centre.
+    fn defined_everywhere(&self) -> bool {
+        false
+    }
+
     fn validate(&self) -> Result<()> {
         RadialWaveParams::validate(self, "water")
     }
@@ -102,6 +107,9 @@ impl PointWave for RadialWave {
 }
 
 impl WaveModel for RadialWave {
+    /// Nothing: a finite pool seen up close: its one wave is resolved wherever it is drawn.
+    fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
+
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
         evaluate_pointwise(self, grid, t, positions, normals);
     }

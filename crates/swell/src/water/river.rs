@@ -183,6 +183,11 @@ impl River {
 }
 
 impl ModelParams for RiverParams {
+    /// Finite: the river runs between its two banks.
+    fn defined_everywhere(&self) -> bool {
+        false
+    }
+
     fn validate(&self) -> Result<()> {
         RiverParams::validate(self, "water")
     }
@@ -199,6 +204,9 @@ impl ModelParams for RiverParams {
 }
 
 impl WaveModel for River {
+    /// Nothing: a finite river whose ripples are resolved wherever it is drawn.
+    fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
+
     /// Column i of row j lies at fraction `u = i / cells_x` of the way from the left to the right
     /// bank at the row's z; normals are exact for the bank-interpolated surface.
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {

@@ -494,6 +494,11 @@ impl SpringMesh {
 }
 
 impl ModelParams for SpringMeshParams {
+    /// Finite: the lattice has as many masses as cells, no more.
+    fn defined_everywhere(&self) -> bool {
+        false
+    }
+
     fn validate(&self) -> Result<()> {
         SpringMeshParams::validate(self, "water")
     }
@@ -522,6 +527,9 @@ impl ModelParams for SpringMeshParams {
 }
 
 impl WaveModel for SpringMesh {
+    /// Nothing: a simulated lattice has no spectrum: its surface is what its vertices say.
+    fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
+
     /// Samples the lattice at each grid vertex (bilinear in displacement and normal; exact copies
     /// where grid vertices coincide with nodes). The grid may differ from the lattice; outside the
     /// lattice the surface is at rest.

@@ -111,6 +111,11 @@ impl SteepSines {
 }
 
 impl ModelParams for SteepSinesParams {
+    /// Everywhere: a sum of powered sines, a closed form of (x, z).
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         SteepSinesParams::validate(self, "water")
     }

@@ -8,6 +8,7 @@ use std::f32::consts::TAU;
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
+use super::slope_spectrum::push_wave_slopes;
 use super::wave_model::{evaluate_pointwise, PointWave, SurfacePoint, WaveModel};
 use super::ModelParams;
 use crate::error::{check_direction, check_range, Error, Result};
@@ -97,6 +98,11 @@ pub struct SinesSpec {
 }
 
 impl ModelParams for SinesSpec {
+    /// Everywhere: a sum of sines, a closed form of (x, z).
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         SumOfSines::check(&self.waves)
     }
@@ -131,10 +137,7 @@ impl PointWave for SumOfSines {
 
 impl WaveModel for SumOfSines {
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
-        for w in &self.waves {
-            let k = std::f32::consts::TAU / w.wavelength;
-            out.push((k, 0.5 * (w.amplitude * k).powi(2)));
-        }
+        push_wave_slopes(self.waves.iter().map(|w| (w.amplitude, w.wavelength)), out);
     }
 
     fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {

@@ -58,9 +58,12 @@ pub trait WaveModel: Send + Sync {
     /// Appends the model's slope spectrum to `out` as `(wavenumber rad/m, slope variance)` pairs,
     /// slope variance summed over both horizontal axes (`(A k)^2 / 2` for a wave of amplitude A):
     /// what the renderer filters statistically where the waves are shorter than a pixel or a
-    /// mesh cell (`shading/slope_variance.rs`, Bruneton et al. 2010). The default appends nothing
-    /// (the surface is then shaded as sampled, unfiltered).
-    fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
+    /// mesh cell ([`crate::water::UnresolvedSlopes`], Bruneton et al. 2010). Required, with no
+    /// default, so that a new model says what its slopes are: one made of discrete waves lists
+    /// them ([`crate::water::push_wave_slopes`]); one with no spectrum to filter (noise, a
+    /// simulated lattice, a finite pool) appends nothing and says why, and is then shaded as
+    /// sampled.
+    fn slope_components(&self, out: &mut Vec<(f32, f32)>);
 
     /// Disturbs the surface at world (x, z) (m): a dent `amount` metres deep at the centre easing
     /// to 0 at `radius` m (the viewer's click on the water). Returns true if the model has state to

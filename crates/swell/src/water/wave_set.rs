@@ -117,6 +117,11 @@ pub fn wave_set(params: &WaveSetParams) -> Result<Vec<GerstnerWave>> {
 
 /// `model = "wave-set"` builds Gerstner waves ([`Gerstner`]) from these.
 impl ModelParams for WaveSetParams {
+    /// Everywhere: generated Gerstner waves, a closed form of (x, z).
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         // Drawing the waves is cheap (at most a few dozen), and checks them as the build will.
         Gerstner::check(&wave_set(self)?)

@@ -273,6 +273,11 @@ impl FftOceanParams {
     }
 }
 impl ModelParams for FftOceanParams {
+    /// Everywhere: the cascades tile the plane.
+    fn defined_everywhere(&self) -> bool {
+        true
+    }
+
     fn validate(&self) -> Result<()> {
         FftOceanParams::validate(self, "water")
     }

@@ -1,0 +1,34 @@
+//! Times the frames of one preset at 1280 x 720, as `swell bench realtime` does for all of them:
+//! for profiling one preset (`perf record`, `valgrind --tool=callgrind`) without the others.
+//!
+//! ```sh
+//! cargo run --release -p swell --example frames -- ocean 120
+//! ```
+//! prints the median frame time (ms) and frames per second of `World::update` +
+//! `Renderer::render_size` over the given number of frames (default 60), after 5 warm-up frames.
+
+use std::time::Instant;
+
+use swell::render::Renderer;
+use swell::scene::{preset, World};
+
+fn main() -> swell::Result<()> {
+    let mut args = std::env::args().skip(1);
+    let name = args.next().unwrap_or_else(|| "sea".into());
+    let frames: usize = args.next().and_then(|n| n.parse().ok()).unwrap_or(60);
+    let mut world = World::new(preset(&name)?)?;
+    let mut renderer = Renderer::new();
+    let mut times = Vec::with_capacity(frames);
+    for k in 0..frames + 5 {
+        let start = Instant::now();
+        world.update(k as f64 / 30.0)?;
+        renderer.render_size(&world, 1280, 720);
+        if k >= 5 {
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    println!("{name}: median {median:.2} ms ({:.1} fps) over {frames} frames", 1e3 / median);
+    Ok(())
+}
