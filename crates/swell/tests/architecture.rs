@@ -18,14 +18,10 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// Upward imports, as (from, to) top-level modules, that the layer check accepts for now.
-/// issue 33: to be removed (the lead empties this list; the test fails on an entry that is no
-/// longer needed, so the list cannot outlive its imports).
-const KNOWN_UPWARD: &[(&str, &str)] = &[
-    // issue 33: to be removed. scene/world.rs builds the rings' filter input from
-    // `crate::shading::UnresolvedSlopes`; it moves into water/.
-    ("scene", "shading"),
-];
+/// Upward imports, as (from, to) top-level modules, that the layer check accepts: none (issue 33
+/// removed the last, `scene` -> `shading`). The test fails on an entry that is no longer needed,
+/// so the list cannot outlive its imports.
+const KNOWN_UPWARD: &[(&str, &str)] = &[];
 
 /// The crates whose source files the module map must name, each exactly once.
 const MAPPED_SOURCE_DIRS: &[&str] = &["crates/swell/src", "crates/swell-cli/src", "crates/swell-viewer/src"];

@@ -107,6 +107,31 @@ fn every_water_model_validates_builds_and_round_trips_by_name() {
     assert!(WaterModelSpec::default_for("lava").is_none());
 }
 
+/// docs/scene-format.md's `extent` row names each model once, among the models defined everywhere
+/// or among those that cannot be unbounded, as the model's own `ModelParams::defined_everywhere`
+/// says (issue 33: the fact lives in the model contract; the docs row cannot drift from it).
+#[test]
+fn the_extent_row_sorts_every_model_as_its_contract_says() {
+    let doc = scene_format_doc();
+    let row = doc.lines().find(|l| l.starts_with("| `extent` | string")).expect("the extent row");
+    // The backticked names inside the parentheses after each phrase.
+    let names_after = |phrase: &str| -> Vec<String> {
+        let at = row.find(phrase).unwrap_or_else(|| panic!("the extent row lacks \"{phrase}\""));
+        let list = &row[at + phrase.len()..];
+        let list = &list[list.find('(').expect("a list") + 1..list.find(')').expect("a closed list")];
+        list.split('`').skip(1).step_by(2).map(str::to_string).collect()
+    };
+    let everywhere = names_after("the models defined everywhere");
+    let finite = names_after("patch` otherwise");
+    for &name in WATER_MODELS {
+        let defined = WaterModelSpec::default_for(name).unwrap().params().defined_everywhere();
+        let (listed, other) = if defined { (&everywhere, &finite) } else { (&finite, &everywhere) };
+        assert!(listed.iter().any(|n| n == name), "extent row: `{name}` belongs in {listed:?}");
+        assert!(!other.iter().any(|n| n == name), "extent row: `{name}` is listed in {other:?}");
+    }
+    assert_eq!(everywhere.len() + finite.len(), WATER_MODELS.len(), "{everywhere:?} {finite:?}");
+}
+
 #[test]
 fn every_generator_but_the_file_validates_builds_and_round_trips_by_name() {
     for &name in TERRAIN_GENERATORS.iter().filter(|g| **g != "heightmap") {
