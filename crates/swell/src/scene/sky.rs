@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::preetham::{sun_transmittance, TURBIDITY_RANGE};
 use super::SkyModel;
 use crate::error::{check_finite_vec, check_non_negative, check_range, Error, Result};
-use crate::math::Vec3Lanes;
+use crate::math::{Lanes, Vec3Lanes};
 use crate::scene::Light;
 
 /// The sky: `[sky]`. Every key has a default; the default sky is the original gradient.
@@ -139,8 +139,15 @@ impl SunDisc {
     #[inline(always)]
     pub fn radiance_lanes(&self, dir: Vec3Lanes) -> Vec3Lanes {
         if self.profile == SunProfile::LimbDarkened {
-            // The Preetham sun's limb and glow, lane by lane.
-            return Vec3Lanes::from_fn(|i| self.limb_darkened(dir.lane(i).dot(self.to_sun)));
+            // The Preetham sun's limb and glow, lane by lane where any lane is near enough to the
+            // sun to see its glow; most batches look elsewhere, and get zero from one vector test
+            // (the same `x` as `limb_darkened` computes, so the same answer).
+            let c = dir.dot1(self.to_sun);
+            let x = (Lanes::splat(1.0) - c) / (1.0 - self.cos_radius).max(1e-12);
+            if !x.lt(GLOW_END).any() && !x.map(|v| if v.is_nan() { 1.0 } else { 0.0 }).gt(0.0).any() {
+                return Vec3Lanes::splat(Vec3::ZERO);
+            }
+            return Vec3Lanes::from_fn(|i| self.limb_darkened(c.0[i]));
         }
         let c = dir.dot1(self.to_sun);
         let rim = 1.0 - self.cos_radius;

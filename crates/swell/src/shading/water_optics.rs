@@ -294,13 +294,9 @@ pub fn shade_water_lanes(
         let cover = foam_cover_lanes(env, look, p, foam.min(1.0));
         water = foam.gt(0.0).select3(water.lerp(foam_light, cover), water);
     }
-    if env.sky.sky().haze_distance > 0.0 {
-        // Aerial perspective: distant water fades into the horizon's haze.
-        for i in 0..live {
-            water.set_lane(i, env.haze(p.lane(i), water.lane(i)));
-        }
-    }
-    water
+    // Aerial perspective: distant water fades into the horizon's haze (unchanged without haze).
+    // Lanes past `live` are computed and dropped by the caller.
+    env.sky.aerial_perspective_lanes(env.eye, p, water)
 }
 
 /// A run of water points to shade together ([`shade_water_run`]): point `i` of `len`, with its
