@@ -212,9 +212,9 @@ pub fn show_extent(ui: &mut Ui, s: &mut WaterSurface, auto: WaterExtent) -> bool
     changed
 }
 
-/// Shows the water section; returns whether `water` changed. `has_terrain` says whether the scene
-/// has terrain, which decides the water's automatic extent.
-pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState, has_terrain: bool) -> bool {
+/// The model menu (`none` or any of [`WATER_MODELS`]) and why the last switch was refused;
+/// returns whether `water` changed.
+fn show_model_menu(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) -> bool {
     let mut changed = false;
     let current = water.as_ref().map(|w| w.model.name().to_string());
     let mut chosen = current.clone();
@@ -250,21 +250,34 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState, 
     if let Some(m) = &forms.water_message {
         ui.colored_label(ui.visuals().error_fg_color, m);
     }
-    let Some(w) = water else { return changed };
+    changed
+}
 
+/// The patch: its size, grid cells (the grid resolution) and centre; returns whether it changed.
+fn show_patch(ui: &mut Ui, s: &mut WaterSurface) -> bool {
+    let mut changed = false;
     fields::grid("water-surface").show(ui, |ui| {
-        changed |= fields::vec2_xz(ui, "size (m)", &mut w.surface.size, 1.0);
+        changed |= fields::vec2_xz(ui, "size (m)", &mut s.size, 1.0);
         ui.label("grid cells");
         ui.horizontal(|ui| {
-            let [cx, cz] = &mut w.surface.cells;
+            let [cx, cz] = &mut s.cells;
             for (c, name) in [(cx, "x "), (cz, "z ")] {
                 changed |= ui.add(egui::DragValue::new(c).speed(2.0).prefix(name)).changed();
             }
         });
         ui.end_row();
-        changed |= fields::vec2_xz(ui, "center (m)", &mut w.surface.center, 1.0);
+        changed |= fields::vec2_xz(ui, "center (m)", &mut s.center, 1.0);
     });
     keys::edits("water", &["size", "cells", "center"]);
+    changed
+}
+
+/// Shows the water section; returns whether `water` changed. `has_terrain` says whether the scene
+/// has terrain, which decides the water's automatic extent.
+pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState, has_terrain: bool) -> bool {
+    let mut changed = show_model_menu(ui, water, forms);
+    let Some(w) = water else { return changed };
+    changed |= show_patch(ui, &mut w.surface);
     changed |= show_extent(ui, &mut w.surface, WaterExtent::default_for(&w.model, has_terrain));
     ui.label("Material");
     changed |= show_material(ui, &mut w.material);
