@@ -186,19 +186,13 @@ pub fn show_extent(ui: &mut Ui, s: &mut WaterSurface, auto: WaterExtent) -> bool
     keys::edits("water", &["extent"]);
     // Shown whatever the extent, so that a scene's keys stay editable before it is switched to
     // unbounded (validation checks them either way).
-    ui.label("Level of detail (unbounded water: rings that follow the camera)");
+    ui.label("Level of detail (unbounded water's camera rings)");
     let (lo, hi) = LOD_RING_CELLS;
     let (spacing_lo, spacing_hi) = LOD_SPACING_M;
     let auto_spacing = auto_lod_spacing(s).unwrap_or(1.0);
     fields::grid("water-lod").show(ui, |ui| {
         changed |= fields::count(ui, &format!("rings [1, {MAX_LOD_LEVELS}]"), &mut s.lod.levels, 0.05);
-        changed |= fields::count_in_steps(
-            ui,
-            &format!("ring cells (multiples of 4 in [{lo}, {hi}])"),
-            &mut s.lod.ring_cells,
-            4,
-            1.0,
-        );
+        changed |= fields::count_in_steps(ui, &format!("ring cells [{lo}, {hi}], by 4"), &mut s.lod.ring_cells, 4, 1.0);
         changed |= fields::auto_number(
             ui,
             &format!("finest spacing [{spacing_lo}, {spacing_hi}]"),
