@@ -84,6 +84,8 @@ pub fn show(ui: &mut Ui, p: &mut FftOceanParams) -> bool {
             p.swell = has_swell.then(SwellParams::default);
             changed = true;
         }
+        // The switch adds or removes the whole table.
+        keys::edits("water", &["swell"]);
         if let Some(s) = &mut p.swell {
             changed |= fields::number(ui, "  swell height Hs", &mut s.height, 0.01, " m");
             changed |= fields::number(ui, "  swell period", &mut s.period, 0.05, " s");
@@ -96,6 +98,7 @@ pub fn show(ui: &mut Ui, p: &mut FftOceanParams) -> bool {
             set_blender(p, has_blender);
             changed = true;
         }
+        keys::edits("water", &["blender"]);
     });
     if let Some(b) = &mut p.blender {
         ui.label("[water.blender]: Blender's names and meaning; they replace the sea keys above");

@@ -23,6 +23,34 @@ pub fn count(ui: &mut Ui, label: &str, value: &mut u32, speed: f64) -> bool {
     changed
 }
 
+/// A labelled whole number that drags and steps (arrow keys) in multiples of `step`, for keys
+/// that take only multiples (`water.lod.ring_cells`, multiples of 4): dragging then passes only
+/// through values the key accepts instead of refusing three in four. A typed value is kept as
+/// typed, multiple or not, and refused by validation like any other. `speed` is in steps per
+/// point of drag and per key press; each press lands on a whole step, so a speed below 1 (as
+/// other counts take) would leave single presses where they were.
+pub fn count_in_steps(ui: &mut Ui, label: &str, value: &mut u32, step: u32, speed: f64) -> bool {
+    ui.label(label);
+    let step = f64::from(step.max(1));
+    let before = *value;
+    // The widget edits the number of steps (whole, so drags land on multiples); the text shows
+    // and reads the value itself.
+    ui.add(
+        DragValue::from_get_set(|set| {
+            if let Some(steps) = set {
+                *value = (steps * step).round().clamp(0.0, f64::from(u32::MAX)) as u32;
+            }
+            f64::from(*value) / step
+        })
+        .speed(speed)
+        .max_decimals(0)
+        .custom_formatter(|steps, _| format!("{}", (steps * step).round()))
+        .custom_parser(|text| text.trim().parse::<f64>().ok().map(|v| v / step)),
+    );
+    ui.end_row();
+    *value != before
+}
+
 /// Three drag values for a 3-vector, without a label or row end (for use inside tables).
 pub fn vec3_inline(ui: &mut Ui, v: &mut Vec3, speed: f64) -> bool {
     let mut changed = false;
@@ -175,6 +203,40 @@ pub fn optional_number(
     changed
 }
 
+/// A labelled optional number whose absence means "automatic" (`water.lod.spacing`): an *auto*
+/// check box, on when the value is `None`, showing `auto_value`, what the scene then gets; turned
+/// off, the number starts from `auto_value`, so the picture does not jump.
+pub fn auto_number(
+    ui: &mut Ui,
+    label: &str,
+    value: &mut Option<f32>,
+    auto_value: f32,
+    speed: f64,
+    suffix: &str,
+) -> bool {
+    ui.label(label);
+    let changed = ui
+        .horizontal(|ui| {
+            let mut auto = value.is_none();
+            let mut changed = false;
+            if ui.checkbox(&mut auto, "auto").changed() {
+                *value = (!auto).then_some(auto_value);
+                changed = true;
+            }
+            match value {
+                Some(v) => changed |= ui.add(DragValue::new(v).speed(speed).suffix(suffix).max_decimals(4)).changed(),
+                None => {
+                    // Four decimals, as the number shows once it is set.
+                    ui.weak(format!("{}{suffix}", (auto_value * 1e4).round() / 1e4));
+                }
+            }
+            changed
+        })
+        .inner;
+    ui.end_row();
+    changed
+}
+
 /// A labelled choice among `options` (value, name) in a combo box; returns whether it changed.
 pub fn choice<T: PartialEq + Copy>(ui: &mut Ui, label: &str, value: &mut T, options: &[(T, &str)]) -> bool {
     ui.label(label);
@@ -264,5 +326,46 @@ mod tests {
         check::<SpreadingFunction>();
         check::<Edges>();
         check::<swell::scene::SkyModel>();
+    }
+
+    /// Arrow presses (one per frame, as a held key sends them) move a count in steps by whole
+    /// steps; a typed value that is not a multiple is kept as typed.
+    #[test]
+    fn a_count_in_steps_moves_by_whole_steps_and_keeps_typed_values() {
+        fn run(ctx: &egui::Context, events: Vec<egui::Event>, value: &mut u32) -> bool {
+            let mut changed = false;
+            let mut out = ctx.run_ui(egui::RawInput { events, ..Default::default() }, |ui| {
+                egui::CentralPanel::default().show(ui, |ui| {
+                    grid("t").show(ui, |ui| changed = count_in_steps(ui, "cells", value, 4, 1.0));
+                });
+            });
+            out.textures_delta.clear();
+            changed
+        }
+        let key = |key| egui::Event::Key {
+            key,
+            physical_key: None,
+            pressed: true,
+            repeat: false,
+            modifiers: egui::Modifiers::NONE,
+        };
+        let ctx = egui::Context::default();
+        let mut value = 96;
+        run(&ctx, vec![], &mut value);
+        run(&ctx, vec![key(egui::Key::Tab)], &mut value);
+        for expected in [100, 104, 108] {
+            assert!(run(&ctx, vec![key(egui::Key::ArrowUp)], &mut value));
+            assert_eq!(value, expected);
+        }
+        assert!(run(&ctx, vec![key(egui::Key::ArrowDown)], &mut value));
+        assert_eq!(value, 104);
+        // Typed: the text is read as the value itself, not rounded to a step.
+        let ctx = egui::Context::default();
+        let mut typed = 96;
+        run(&ctx, vec![], &mut typed);
+        run(&ctx, vec![key(egui::Key::Tab)], &mut typed);
+        run(&ctx, vec![egui::Event::Text("30".into())], &mut typed);
+        run(&ctx, vec![key(egui::Key::Enter)], &mut typed);
+        assert_eq!(typed, 30);
     }
 }

@@ -105,7 +105,8 @@ pub fn show_all(
     }
     section(ui, "Files", true, |ui| out.file = files::show(ui, &mut state.files));
     section(ui, "Time", true, |ui| time::show(ui, clock));
-    section(ui, "Water", true, |ui| out.scene_changed |= water::show(ui, &mut draft.water, state));
+    let has_terrain = draft.terrain.is_some();
+    section(ui, "Water", true, |ui| out.scene_changed |= water::show(ui, &mut draft.water, state, has_terrain));
     section(ui, "Terrain", draft.terrain.is_some(), |ui| {
         let (changed, request) = terrain::show(ui, &mut draft.terrain, &mut state.terrain);
         out.scene_changed |= changed;
@@ -223,6 +224,15 @@ mod tests {
         swell::scene::WaterSpec::from_table(t, "test").unwrap()
     }
 
+    /// Sets `[water] extent` (unbounded where the model can be) and every `[water.lod]` key away
+    /// from their defaults, at which a file leaves them out.
+    fn set_extent_and_lod(w: &mut swell::scene::WaterSpec) {
+        use swell::scene::WaterExtent;
+        let unbounded = WaterExtent::Unbounded.validate(&w.model).is_ok();
+        w.surface.extent = Some(if unbounded { WaterExtent::Unbounded } else { WaterExtent::Patch });
+        w.surface.lod = swell::scene::LodSettings { levels: 6, ring_cells: 64, spacing: Some(0.5) };
+    }
+
     /// One scene per water model (two for the FFT ocean: swell's keys and Blender's) in which every
     /// key of the scene format is set: both kinds of light, the sun's own direction, a power-law
     /// gamma, a flat bottom and a texture, a terrain with size and extent, the models' optional keys.
@@ -271,6 +281,7 @@ mod tests {
                 // Left out of the file at their identity values.
                 w.surface.yaw_deg = 15.0;
                 w.surface.uniform_scale = 1.5;
+                set_extent_and_lod(&mut w);
                 s.water = Some(w);
                 (m.to_string(), s)
             })
@@ -278,38 +289,60 @@ mod tests {
         let mut blender = base.clone();
         blender.water = preset("ocean-blender").unwrap().water;
         blender.water.as_mut().unwrap().surface.yaw_deg = 15.0;
+        set_extent_and_lod(blender.water.as_mut().unwrap());
         scenes.push(("fft with [water.blender]".into(), blender));
         scenes
     }
 
     /// The panel has a widget for every key of the scene format, for every water model, and
     /// declares no key the format does not have. A key without a widget fails here by name.
+    ///
+    /// The format's keys are every key of each scene, those its file leaves out at their defaults
+    /// included ([`keys::format::scene_keys`], from the scene types' own serialisation): a new key
+    /// fails here even while every preset leaves it at its default. A table left out whole
+    /// (`water.lod` at its defaults) counts as covered by any widget inside it; the scenes below
+    /// also set such tables, so that their own keys are checked one by one.
     #[test]
     fn the_panel_edits_every_key_of_the_scene_format() {
         let scenes = scenes_with_every_key();
-        let mut all_keys = std::collections::BTreeSet::new();
+        let not_edited = |k: &&String| !NOT_EDITED.iter().any(|(x, _)| x == k);
+        let mut format = keys::format::SceneKeys::default();
+        let mut all_declared = std::collections::BTreeSet::new();
         for (label, scene) in &scenes {
+            let found = keys::format::scene_keys(scene);
+            // The walk lays the scene out as its file does: a section it misses fails here.
             let table: toml::Table = toml::from_str(&scene.to_toml()).unwrap();
-            let mut format_keys = keys::key_paths(&table);
-            for (k, _why) in NOT_EDITED {
-                format_keys.remove(*k);
-            }
+            assert_eq!(found.written, keys::key_paths(&table), "{label}: the key walk and the saved file disagree");
             let mut draft = scene.clone();
             let (_, declared) = keys::recording(|| {
                 show_headless(&mut draft, &mut PanelState::default(), &mut Clock::default());
             });
             assert_eq!(&draft, scene, "{label}: showing changed the scene");
-            let missing: Vec<_> = format_keys.difference(&declared).collect();
+            let missing: Vec<_> = found.written.iter().filter(not_edited).filter(|k| !declared.contains(*k)).collect();
             assert!(missing.is_empty(), "{label}: no panel widget edits {missing:?}");
-            all_keys.extend(format_keys);
-            all_keys.extend(declared);
+            let missing: Vec<_> = found
+                .left_out
+                .iter()
+                .filter(not_edited)
+                .filter(|k| !keys::format::SceneKeys::covered(&declared, k))
+                .collect();
+            assert!(
+                missing.is_empty(),
+                "{label}: no panel widget edits {missing:?} (left out of the file at their defaults)"
+            );
+            format.written.extend(found.written);
+            format.left_out.extend(found.left_out);
+            all_declared.extend(declared);
         }
-        // And no declaration names a key that none of the scenes has (a typo, a renamed key).
-        let mut format_keys = std::collections::BTreeSet::new();
-        for (_, scene) in &scenes {
-            format_keys.extend(keys::key_paths(&toml::from_str(&scene.to_toml()).unwrap()));
-        }
-        let unknown: Vec<_> = all_keys.difference(&format_keys).collect();
+        // And no declaration names a key that none of the scenes has (a typo, a renamed key): a
+        // key written or left out, a key inside a table left out whole, or a table (its switch).
+        let known = |d: &String| {
+            let one: std::collections::BTreeSet<String> = [d.clone()].into();
+            format.written.contains(d)
+                || format.left_out.iter().any(|l| keys::format::SceneKeys::covered(&one, l))
+                || format.written.iter().any(|w| w.starts_with(&format!("{d}.")) || w.starts_with(&format!("{d}[].")))
+        };
+        let unknown: Vec<_> = all_declared.iter().filter(|d| !known(d)).collect();
         assert!(unknown.is_empty(), "the panel declares keys the scene format does not have: {unknown:?}");
     }
 

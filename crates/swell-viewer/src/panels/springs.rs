@@ -88,6 +88,8 @@ pub fn show(ui: &mut Ui, p: &mut SpringMeshParams, click: &mut ClickDrop) -> boo
             p.drops = has_drops.then_some(DropSchedule { interval: 4.0, radius: 1.0, depth: 0.8, seed: 1 });
             changed = true;
         }
+        // The switch adds or removes the whole table.
+        keys::edits("water", &["drops"]);
         if let Some(d) = &mut p.drops {
             changed |= fields::number(ui, "  every", &mut d.interval, 0.05, " s");
             changed |= fields::number(ui, "  radius", &mut d.radius, 0.01, " m");

@@ -177,6 +177,8 @@ pub fn show_far_land(ui: &mut Ui, far: &mut Option<FarLandParams>) -> bool {
         *far = on.then(FarLandParams::default);
         changed = true;
     }
+    // The switch adds or removes the whole table.
+    key_paths::edits("terrain", &["far_land"]);
     if let Some(p) = far {
         fields::grid("terrain-far-land").show(ui, |ui| {
             changed |= fields::number(ui, "reach", &mut p.reach, 10.0, " m");
@@ -214,8 +216,29 @@ pub fn apply_step(t: &mut Transform, step: Step, form: &TerrainForm) {
 
 /// Shows the terrain section; returns whether the terrain changed and a heightmap file request.
 pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainForm) -> (bool, Option<FileRequest>) {
-    let mut changed = false;
-    let mut request = None;
+    let mut changed = show_generator_menu(ui, terrain, form);
+    let request = show_heightmap_files(ui, terrain.is_some(), form);
+    if let Some(m) = &form.message {
+        ui.colored_label(ui.visuals().error_fg_color, m);
+    }
+    let Some(t) = terrain else { return (changed, request) };
+    key_paths::edits("terrain", &["generator"]);
+    if let Some(switched) = show_heightmap_source(ui, t, form) {
+        // The terrain was just replaced: the rest of the section shows it from the next frame.
+        return (changed | switched, request);
+    }
+    changed |= show_generator_keys(ui, t, form);
+    changed |= show_size_and_extent(ui, t);
+    ui.label("Material");
+    changed |= show_material(ui, &mut t.material);
+    changed |= show_far_land(ui, &mut t.far_land);
+    changed |= show_transform(ui, &mut t.transform, form);
+    (changed, request)
+}
+
+/// The generator menu (`none` or any generator but a heightmap, which is loaded from a file);
+/// returns whether the terrain changed. A refused switch leaves it and says why in `form`.
+fn show_generator_menu(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainForm) -> bool {
     let current = terrain.as_ref().map(|t| generator_name(&t.generator));
     let mut chosen = current.clone();
     fields::grid("terrain-generator").show(ui, |ui| {
@@ -230,25 +253,34 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
             });
         ui.end_row();
     });
-    if chosen != current {
-        match switch_generator(terrain.as_ref(), chosen.as_deref()) {
-            Ok(t) => {
-                *terrain = t;
-                form.message = None;
-                changed = true;
-            }
-            Err(e) => form.message = Some(e.to_string()),
+    if chosen == current {
+        return false;
+    }
+    match switch_generator(terrain.as_ref(), chosen.as_deref()) {
+        Ok(t) => {
+            *terrain = t;
+            form.message = None;
+            true
+        }
+        Err(e) => {
+            form.message = Some(e.to_string());
+            false
         }
     }
+}
+
+/// The heightmap path with *Load* and (with a terrain to write) *Save*, and the outcome of the
+/// last of them; returns the file operation asked for. The viewer does it at once, so that its
+/// outcome shows under the buttons.
+fn show_heightmap_files(ui: &mut Ui, has_terrain: bool, form: &mut TerrainForm) -> Option<FileRequest> {
+    let mut request = None;
     ui.horizontal(|ui| {
         ui.label("heightmap PNG");
         ui.add(TextEdit::singleline(&mut form.heightmap_path).desired_width(160.0));
         if ui.button("Load").on_hover_text("Use this 8- or 16-bit grey PNG (and its .toml sidecar)").clicked() {
-            // Read by the viewer at once, so that the outcome is reported here.
             request = Some(FileRequest::LoadHeightmap(PathBuf::from(&form.heightmap_path)));
         }
-        if terrain.is_some() && ui.button("Save").on_hover_text("Write the terrain as a 16-bit PNG + sidecar").clicked()
-        {
+        if has_terrain && ui.button("Save").on_hover_text("Write the terrain as a 16-bit PNG + sidecar").clicked() {
             request = Some(FileRequest::SaveHeightmap(PathBuf::from(&form.heightmap_path)));
         }
     });
@@ -261,31 +293,39 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
         }
         None => {}
     }
-    if let Some(m) = &form.message {
-        ui.colored_label(ui.visuals().error_fg_color, m);
-    }
-    let Some(t) = terrain else { return (changed, request) };
-    key_paths::edits("terrain", &["generator"]);
+    request
+}
 
+/// For a terrain read from a heightmap: says which file, with a button back to a generator (a
+/// file has nothing to regenerate). `Some(changed)` when that button was pressed (the terrain is
+/// then replaced, or the refusal is in `form`), `None` otherwise and for generators.
+fn show_heightmap_source(ui: &mut Ui, t: &mut TerrainSpec, form: &mut TerrainForm) -> Option<bool> {
+    let TerrainGenerator::Heightmap(h) = &t.generator else { return None };
+    ui.label(format!("Heights come from the file {} (edit its keys below).", h.path.display()));
+    if !ui.button(format!("Back to a generator ({DEFAULT_GENERATOR})")).clicked() {
+        return None;
+    }
+    match switch_generator(Some(t), Some(DEFAULT_GENERATOR)) {
+        Ok(Some(g)) => {
+            *t = g;
+            form.message = None;
+            Some(true)
+        }
+        Ok(None) => Some(false),
+        Err(e) => {
+            form.message = Some(e.to_string());
+            Some(false)
+        }
+    }
+}
+
+/// One row per key of the generator (or heightmap), read back through the scene-file parser, and
+/// *Regenerate (new seed)* for generators with a seed; returns whether the generator changed.
+fn show_generator_keys(ui: &mut Ui, t: &mut TerrainSpec, form: &mut TerrainForm) -> bool {
+    let mut changed = false;
     let (name, mut keys) = generator_keys(&t.generator);
     let names: Vec<&str> = keys.keys().map(String::as_str).collect();
     key_paths::edits("terrain", &names);
-    if let TerrainGenerator::Heightmap(h) = &t.generator {
-        // A file, not a generator: nothing to regenerate; the way back is a generator.
-        ui.label(format!("Heights come from the file {} (edit its keys below).", h.path.display()));
-        if ui.button(format!("Back to a generator ({DEFAULT_GENERATOR})")).clicked() {
-            match switch_generator(Some(t), Some(DEFAULT_GENERATOR)) {
-                Ok(Some(g)) => {
-                    *t = g;
-                    form.message = None;
-                    changed = true;
-                }
-                Ok(None) => {}
-                Err(e) => form.message = Some(e.to_string()),
-            }
-            return (changed, request);
-        }
-    }
     if table_fields::show(ui, "terrain-keys", &mut keys) {
         match set_generator_keys(&name, keys) {
             Ok(g) => {
@@ -299,8 +339,16 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
     if has_seed(&t.generator) && ui.button("Regenerate (new seed)").clicked() {
         changed |= regenerate(t);
     }
+    changed
+}
+
+/// `size` (vertices per side; a heightmap's is its file's) and `extent` (m), each optional;
+/// returns whether either changed.
+fn show_size_and_extent(ui: &mut Ui, t: &mut TerrainSpec) -> bool {
+    let mut changed = false;
+    let from_file = matches!(t.generator, TerrainGenerator::Heightmap(_));
     fields::grid("terrain-size").show(ui, |ui| {
-        if !matches!(t.generator, TerrainGenerator::Heightmap(_)) {
+        if !from_file {
             let mut size = t.size.map(|s| s as f32);
             let default = swell::scene::DEFAULT_TERRAIN_SIZE as f32;
             if fields::optional_number(ui, "size (vertices)", &mut size, default, 1.0, "") {
@@ -322,19 +370,22 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
         });
         ui.end_row();
     });
-    if !matches!(t.generator, TerrainGenerator::Heightmap(_)) {
+    if !from_file {
         key_paths::edits("terrain", &["size"]);
     }
     key_paths::edits("terrain", &["extent"]);
-    ui.label("Material");
-    changed |= show_material(ui, &mut t.material);
-    changed |= show_far_land(ui, &mut t.far_land);
+    changed
+}
+
+/// The object transform: translate, rotate and scale typed directly, the step sizes (the
+/// panel's, not the scene's) and a row of step buttons per axis; returns whether it changed.
+fn show_transform(ui: &mut Ui, transform: &mut Transform, form: &mut TerrainForm) -> bool {
+    let mut changed = false;
     ui.label("Transform");
     fields::grid("terrain-transform").show(ui, |ui| {
-        changed |= fields::vec3(ui, "translate (m)", &mut t.transform.translate, 0.1);
-        changed |= fields::vec3(ui, "rotate (deg)", &mut t.transform.rotate_deg, 0.5);
-        changed |= fields::vec3(ui, "scale", &mut t.transform.scale, 0.01);
-        // Step sizes are the panel's, not the scene's.
+        changed |= fields::vec3(ui, "translate (m)", &mut transform.translate, 0.1);
+        changed |= fields::vec3(ui, "rotate (deg)", &mut transform.rotate_deg, 0.5);
+        changed |= fields::vec3(ui, "scale", &mut transform.scale, 0.01);
         fields::number(ui, "move step", &mut form.move_step, 0.1, " m");
         fields::number(ui, "rotate step", &mut form.rotate_step, 0.1, " deg");
         fields::number(ui, "scale step", &mut form.scale_step, 0.01, " x");
@@ -361,16 +412,16 @@ pub fn show(ui: &mut Ui, terrain: &mut Option<TerrainSpec>, form: &mut TerrainFo
         if ui.small_button("scale x").clicked() {
             step = Some(Step::Scale(1.0));
         }
-        if ui.small_button("identity").clicked() && t.transform != Transform::IDENTITY {
-            t.transform = Transform::IDENTITY;
+        if ui.small_button("identity").clicked() && *transform != Transform::IDENTITY {
+            *transform = Transform::IDENTITY;
             changed = true;
         }
     });
     if let Some(s) = step {
-        apply_step(&mut t.transform, s, form);
+        apply_step(transform, s, form);
         changed = true;
     }
-    (changed, request)
+    changed
 }
 
 #[cfg(test)]

@@ -6,7 +6,10 @@
 //! [`show`]; the compiler points at the match when a new `WaterModelSpec` variant arrives.
 
 use eframe::egui::{self, Ui};
-use swell::scene::{GerstnerSpec, SinesSpec, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, WATER_MODELS};
+use swell::scene::{
+    GerstnerSpec, SinesSpec, WaterExtent, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface, LOD_RING_CELLS,
+    LOD_SPACING_M, MAX_LOD_LEVELS, WATER_MODELS,
+};
 use swell::water::{GerstnerWave, SineWave};
 use swell::{Error, Result};
 
@@ -74,8 +77,13 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
     }
     table.insert("model".into(), toml::Value::String(name.into()));
     let mut w = WaterSpec::from_table(table, "viewer")?;
-    // The whole patch carries over, whatever keys it has (placement included).
+    // The whole patch carries over, whatever keys it has (placement included), except an extent
+    // the new model cannot have (an unbounded sea switched to the finite spring lattice): it goes
+    // back to automatic rather than refusing the switch.
     w.surface = surface;
+    if w.surface.extent.is_some_and(|e| e.validate(&w.model).is_err()) {
+        w.surface.extent = None;
+    }
     Ok(w)
 }
 
@@ -142,8 +150,65 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
     changed
 }
 
-/// Shows the water section; returns whether `water` changed.
-pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) -> bool {
+/// Every `water.extent` value with its scene-file name, read through the scene format's own
+/// names ([`WaterExtent::NAMES`]), so that a new extent appears in the menu without an edit here.
+pub fn extent_options() -> Vec<(WaterExtent, &'static str)> {
+    WaterExtent::NAMES
+        .iter()
+        .map(|&name| {
+            let e = toml::Value::String(name.into()).try_into().expect("WaterExtent::NAMES are the names it reads");
+            (e, name)
+        })
+        .collect()
+}
+
+/// The finest ring spacing (m) an unset `water.lod.spacing` gets: the patch's own vertex spacing,
+/// the smaller of `size / cells` (`docs/scene-format.md`), so that the sea near the eye is sampled
+/// as the patch was. `None` while the patch itself is invalid.
+pub fn auto_lod_spacing(s: &WaterSurface) -> Option<f32> {
+    let spacing = s.grid().ok()?.spacing();
+    Some(spacing.x.min(spacing.y))
+}
+
+/// Shows `[water] extent` and the `[water.lod]` keys; returns whether `s` changed. `auto` is the
+/// extent the scene gets while `extent` is unset (it depends on the model and on whether the
+/// scene has terrain, which the surface alone does not know).
+pub fn show_extent(ui: &mut Ui, s: &mut WaterSurface, auto: WaterExtent) -> bool {
+    let mut changed = false;
+    let options = extent_options();
+    let auto_name = options.iter().find(|(e, _)| *e == auto).map_or("?", |(_, n)| n);
+    let auto_label = format!("auto ({auto_name})");
+    let mut menu: Vec<(Option<WaterExtent>, &str)> = vec![(None, auto_label.as_str())];
+    menu.extend(options.iter().map(|&(e, n)| (Some(e), n)));
+    fields::grid("water-extent").show(ui, |ui| {
+        changed |= fields::choice(ui, "extent", &mut s.extent, &menu);
+    });
+    keys::edits("water", &["extent"]);
+    // Shown whatever the extent, so that a scene's keys stay editable before it is switched to
+    // unbounded (validation checks them either way).
+    ui.label("Level of detail (unbounded water's camera rings)");
+    let (lo, hi) = LOD_RING_CELLS;
+    let (spacing_lo, spacing_hi) = LOD_SPACING_M;
+    let auto_spacing = auto_lod_spacing(s).unwrap_or(1.0);
+    fields::grid("water-lod").show(ui, |ui| {
+        changed |= fields::count(ui, &format!("rings [1, {MAX_LOD_LEVELS}]"), &mut s.lod.levels, 0.05);
+        changed |= fields::count_in_steps(ui, &format!("ring cells [{lo}, {hi}], by 4"), &mut s.lod.ring_cells, 4, 1.0);
+        changed |= fields::auto_number(
+            ui,
+            &format!("finest spacing [{spacing_lo}, {spacing_hi}]"),
+            &mut s.lod.spacing,
+            auto_spacing,
+            0.005,
+            " m",
+        );
+    });
+    keys::edits("water.lod", &["levels", "ring_cells", "spacing"]);
+    changed
+}
+
+/// The model menu (`none` or any of [`WATER_MODELS`]) and why the last switch was refused;
+/// returns whether `water` changed.
+fn show_model_menu(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) -> bool {
     let mut changed = false;
     let current = water.as_ref().map(|w| w.model.name().to_string());
     let mut chosen = current.clone();
@@ -179,21 +244,35 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState) 
     if let Some(m) = &forms.water_message {
         ui.colored_label(ui.visuals().error_fg_color, m);
     }
-    let Some(w) = water else { return changed };
+    changed
+}
 
+/// The patch: its size, grid cells (the grid resolution) and centre; returns whether it changed.
+fn show_patch(ui: &mut Ui, s: &mut WaterSurface) -> bool {
+    let mut changed = false;
     fields::grid("water-surface").show(ui, |ui| {
-        changed |= fields::vec2_xz(ui, "size (m)", &mut w.surface.size, 1.0);
+        changed |= fields::vec2_xz(ui, "size (m)", &mut s.size, 1.0);
         ui.label("grid cells");
         ui.horizontal(|ui| {
-            let [cx, cz] = &mut w.surface.cells;
+            let [cx, cz] = &mut s.cells;
             for (c, name) in [(cx, "x "), (cz, "z ")] {
                 changed |= ui.add(egui::DragValue::new(c).speed(2.0).prefix(name)).changed();
             }
         });
         ui.end_row();
-        changed |= fields::vec2_xz(ui, "center (m)", &mut w.surface.center, 1.0);
+        changed |= fields::vec2_xz(ui, "center (m)", &mut s.center, 1.0);
     });
     keys::edits("water", &["size", "cells", "center"]);
+    changed
+}
+
+/// Shows the water section; returns whether `water` changed. `has_terrain` says whether the scene
+/// has terrain, which decides the water's automatic extent.
+pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState, has_terrain: bool) -> bool {
+    let mut changed = show_model_menu(ui, water, forms);
+    let Some(w) = water else { return changed };
+    changed |= show_patch(ui, &mut w.surface);
+    changed |= show_extent(ui, &mut w.surface, WaterExtent::default_for(&w.model, has_terrain));
     ui.label("Material");
     changed |= show_material(ui, &mut w.material);
     changed |= water_transform::show(ui, &mut w.surface, &mut forms.water_transform);
@@ -250,5 +329,34 @@ mod tests {
         }
         assert!(switch_model(Some(&sea), "lava").is_err());
         assert_eq!(switch_model(Some(&sea), "gerstner").unwrap(), sea);
+    }
+
+    #[test]
+    fn an_extent_the_new_model_cannot_have_goes_back_to_automatic() {
+        let mut sea = preset("sea").unwrap().water.unwrap();
+        sea.surface.extent = Some(WaterExtent::Unbounded);
+        sea.surface.lod.levels = 5;
+        let springs = switch_model(Some(&sea), "springs").unwrap();
+        assert_eq!(springs.surface.extent, None);
+        assert_eq!(springs.surface.lod, sea.surface.lod, "the rest of the patch carries over");
+        let fft = switch_model(Some(&sea), "fft").unwrap();
+        assert_eq!(fft.surface.extent, Some(WaterExtent::Unbounded));
+        sea.surface.extent = Some(WaterExtent::Patch);
+        assert_eq!(switch_model(Some(&sea), "river").unwrap().surface.extent, Some(WaterExtent::Patch));
+    }
+
+    #[test]
+    fn the_extent_menu_lists_every_extent_and_auto_spacing_is_the_patch_s() {
+        let options = extent_options();
+        assert_eq!(options.iter().map(|(_, n)| *n).collect::<Vec<_>>(), WaterExtent::NAMES);
+        for (e, name) in options {
+            let text = format!("model = 'sines'\nextent = '{name}'\n");
+            let w = WaterSpec::from_table(toml::from_str(&text).unwrap(), "t").unwrap();
+            assert_eq!(w.surface.extent, Some(e));
+        }
+        let mut s = WaterSurface { size: glam::Vec2::new(100.0, 50.0), cells: [200, 200], ..Default::default() };
+        assert_eq!(auto_lod_spacing(&s), Some(0.25));
+        s.cells = [0, 200];
+        assert_eq!(auto_lod_spacing(&s), None);
     }
 }
