@@ -162,12 +162,12 @@ pub fn extent_options() -> Vec<(WaterExtent, &'static str)> {
         .collect()
 }
 
-/// The finest ring spacing (m) an unset `water.lod.spacing` gets: the patch's own vertex spacing,
-/// the smaller of `size / cells` (`docs/scene-format.md`), so that the sea near the eye is sampled
-/// as the patch was. `None` while the patch itself is invalid.
+/// The finest ring spacing (m) an unset `water.lod.spacing` gets, as the library resolves it
+/// (`LodSettings::resolved_spacing`: the patch's smaller `size / cells`). `None` while the patch
+/// itself is invalid.
 pub fn auto_lod_spacing(s: &WaterSurface) -> Option<f32> {
-    let spacing = s.grid().ok()?.spacing();
-    Some(spacing.x.min(spacing.y))
+    let auto = swell::scene::LodSettings { spacing: None, ..s.lod };
+    Some(auto.resolved_spacing(&s.grid().ok()?))
 }
 
 /// Shows `[water] extent` and the `[water.lod]` keys; returns whether `s` changed. `auto` is the

@@ -263,7 +263,8 @@ mod tests {
         for sky in [preetham(20.0, 70.0, 3.0), Sky::default()] {
             let table = SkyRadiance::new(&Sky { haze_distance: 900.0, ..sky });
             let eye = Vec3::new(3.0, 12.0, -40.0);
-            let p = Vec3Lanes::from_fn(|i| Vec3::new(i as f32 * 37.0 - 900.0, (i % 5) as f32 - 2.0, i as f32 * i as f32));
+            let p =
+                Vec3Lanes::from_fn(|i| Vec3::new(i as f32 * 37.0 - 900.0, (i % 5) as f32 - 2.0, i as f32 * i as f32));
             let color = Vec3Lanes::from_fn(|i| Vec3::new(0.1, 0.02 * i as f32, 0.3));
             let got = table.aerial_perspective_lanes(eye, p, color);
             for i in 0..crate::math::LANES {
