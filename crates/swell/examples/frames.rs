@@ -18,17 +18,25 @@ fn main() -> swell::Result<()> {
     let frames: usize = args.next().and_then(|n| n.parse().ok()).unwrap_or(60);
     let mut world = World::new(preset(&name)?)?;
     let mut renderer = Renderer::new();
-    let mut times = Vec::with_capacity(frames);
+    let (mut times, mut updates) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
     for k in 0..frames + 5 {
         let start = Instant::now();
         world.update(k as f64 / 30.0)?;
+        let updated = start.elapsed().as_secs_f64() * 1e3;
         renderer.render_size(&world, 1280, 720);
         if k >= 5 {
             times.push(start.elapsed().as_secs_f64() * 1e3);
+            updates.push(updated);
         }
     }
-    times.sort_by(f64::total_cmp);
-    let median = times[times.len() / 2];
-    println!("{name}: median {median:.2} ms ({:.1} fps) over {frames} frames", 1e3 / median);
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let (frame, update) = (median(&mut times), median(&mut updates));
+    println!(
+        "{name}: median {frame:.2} ms ({:.1} fps) over {frames} frames; World::update {update:.2} ms",
+        1e3 / frame
+    );
     Ok(())
 }

@@ -140,28 +140,26 @@ impl SkyRadiance {
         up.select3(sky, below)
     }
 
-    /// [`Self::lookup`] of many disc coordinates.
+    /// [`Self::lookup`] of many disc coordinates: the scaling to cells in lanes, then each lane's
+    /// four corners and blend exactly as [`Self::lookup`] does them.
     #[inline(always)]
     fn lookup_lanes(&self, u: Lanes, v: Lanes) -> Vec3Lanes {
         const HALF: f32 = 0.5 * TABLE_SIDE as f32;
         const LAST: f32 = (TABLE_SIDE - 2) as f32;
         let fx = (u * HALF + (HALF - 0.5)).max(0.0);
         let fy = (v * HALF + (HALF - 0.5)).max(0.0);
-        let (bx, by) = (fx.min(LAST), fy.min(LAST));
-        // In [0, LAST] here: through i32, one instruction per lane.
-        let (i, j) = (bx.map(|b| b as i32 as f32), by.map(|b| b as i32 as f32));
-        let (tx, ty) = ((fx - i).min(1.0), (fy - j).min(1.0));
-        let corner = |d: usize| {
-            Vec3Lanes::from_fn(|n| {
-                let k = j.0[n] as usize * TABLE_SIDE + i.0[n] as usize + d;
-                Vec3::from(self.table[k])
-            })
-        };
-        let (t0, t1) = (corner(0), corner(1));
-        let (t2, t3) = (corner(TABLE_SIDE), corner(TABLE_SIDE + 1));
-        // glam's lerp, `a (1 - s) + b s`, per component.
-        let lerp = |a: Vec3Lanes, b: Vec3Lanes, s: Lanes| a.scale(Lanes::splat(1.0) - s) + b.scale(s);
-        lerp(lerp(t0, t1, tx), lerp(t2, t3, tx), ty)
+        let mut out = Vec3Lanes::splat(Vec3::ZERO);
+        for n in 0..crate::math::LANES {
+            let (fx, fy) = (fx.0[n], fy.0[n]);
+            // In [0, LAST] here: through i32, one instruction.
+            let (i, j) = (fx.min(LAST) as i32 as usize, fy.min(LAST) as i32 as usize);
+            let (tx, ty) = ((fx - i as f32).min(1.0), (fy - j as f32).min(1.0));
+            let k = j * TABLE_SIDE + i;
+            let t = &self.table[k..k + TABLE_SIDE + 2];
+            let c = t[0].lerp(t[1], tx).lerp(t[TABLE_SIDE].lerp(t[TABLE_SIDE + 1], tx), ty);
+            (out.x.0[n], out.y.0[n], out.z.0[n]) = (c.x, c.y, c.z);
+        }
+        out
     }
 
     /// Aerial perspective: `color` of a surface at world `p` seen from `eye`, faded towards the
