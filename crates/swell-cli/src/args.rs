@@ -16,7 +16,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Render one frame to PNG, or an animation to GIF.
+    /// Render one frame to PNG, or an animation to GIF or a PNG sequence.
     Render(RenderArgs),
     /// List the built-in scenes, one per line.
     Presets,
@@ -62,7 +62,10 @@ pub struct SceneSource {
 pub struct RenderArgs {
     #[command(flatten)]
     pub source: SceneSource,
-    /// Output file: `.png` for one frame, `.gif` for an animation (with --frames).
+    /// Output file: `.png` for one frame; with --frames, `.gif` for an animation or a PNG
+    /// sequence pattern such as `frames/sea_%04d.png` (one file per frame, `%04d` replaced by the
+    /// frame number zero-padded to 4 digits; `%d` unpadded, `%0Nd` for N in [1, 9], `%%` a
+    /// literal %; the directory must exist).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Simulation time of the frame (of frame 0 of an animation), in seconds, in [-1e7, 1e7].
@@ -72,8 +75,9 @@ pub struct RenderArgs {
     /// Image size as WIDTHxHEIGHT (default: the scene's [render] size, 1280x720 unless set).
     #[arg(long, value_name = "WxH")]
     pub size: Option<String>,
-    /// The frames of a GIF animation: a count N (frames 0 to N-1) or a range A..B (both
-    /// included), as in `export` and `bake`; frame k shows time --time + k / fps. At most 10000.
+    /// The frames of a GIF animation or PNG sequence: a count N (frames 0 to N-1) or a range A..B
+    /// (both included), as in `export` and `bake`; frame k shows time --time + k / fps, and a PNG
+    /// sequence names it k (48..95 writes files 48 to 95). At most 10000.
     #[arg(long, value_name = "N|A..B", allow_hyphen_values = true)]
     pub frames: Option<String>,
     /// Frames per second, in (0, 1000] as in `export` and `bake`; a GIF plays at most 50 (its
@@ -98,6 +102,14 @@ pub struct RenderArgs {
     /// colour (default: the scene's render.supersample).
     #[arg(long, value_name = "N")]
     pub supersample: Option<u32>,
+    /// PNG sequence only: skip frames whose file is already a complete PNG of the image's size
+    /// (a killed run continues where it stopped; a truncated or foreign file is rendered again).
+    #[arg(long)]
+    pub resume: bool,
+    /// Print on stderr how long rendering the frames took and how long the whole command took
+    /// (encoding and writing included).
+    #[arg(long)]
+    pub verbose: bool,
     /// Comparison mode: render this Wavefront OBJ mesh (v, vn, f) instead of a scene; needs
     /// --camera. Writes the framebuffer without gamma encoding, as OpenGL's RGBA8 would hold it.
     #[arg(long, value_name = "MESH.obj", group = "SceneSource")]

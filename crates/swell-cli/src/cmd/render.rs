@@ -1,11 +1,15 @@
-//! `swell render`: one frame to PNG, or `--frames N` to an animated GIF; or, with `--obj`, one
-//! mesh seen by one camera, for comparison with an OpenGL renderer.
+//! `swell render`: one frame to PNG, or `--frames N` to an animated GIF or a PNG sequence
+//! (`--out 'frames/sea_%04d.png'`); or, with `--obj`, one mesh seen by one camera, for comparison
+//! with an OpenGL renderer.
 
+use std::cell::Cell;
 use std::path::Path;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use swell::export::{write_gif, write_png, FrameRange, MAX_FPS, MAX_GIF_FPS};
+use swell::export::{
+    pending_frames, write_gif, write_png, write_png_sequence, FramePattern, FrameRange, MAX_FPS, MAX_GIF_FPS,
+};
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
 use swell::scene::Shading;
@@ -21,9 +25,20 @@ use swell::limits::MAX_FRAMES;
 enum Output {
     Png,
     Gif { frames: FrameRange },
+    PngSequence { frames: FrameRange, pattern: FramePattern },
+}
+
+impl Output {
+    fn frames(&self) -> Option<FrameRange> {
+        match self {
+            Output::Png => None,
+            Output::Gif { frames } | Output::PngSequence { frames, .. } => Some(*frames),
+        }
+    }
 }
 
 pub fn run(a: RenderArgs) -> Result<()> {
+    let started = Instant::now();
     if a.obj.is_some() {
         return run_mesh(&a);
     }
@@ -42,9 +57,9 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let time = a.time.unwrap_or(0.0);
     swell::limits::check_time("--time", time)?;
     // The latest time the command simulates: the frame's, or the animation's last frame's.
-    let last_time = match &output {
-        Output::Png => time,
-        Output::Gif { frames } => time + f64::from(frames.last) / a.fps,
+    let last_time = match output.frames() {
+        None => time,
+        Some(frames) => time + f64::from(frames.last) / a.fps,
     };
     swell::limits::check_time("--time + last frame / --fps", last_time)?;
     let mut scene = load_scene(&a.source)?;
@@ -75,21 +90,40 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let (exposure, gamma) = (scene.render.exposure, scene.render.gamma);
     let mut world = World::new(scene)?;
     let mut renderer = Renderer::new();
-    pool.install(|| match output {
+    // Time spent rendering frames (simulation, rendering, sRGB encoding; not the advance to the
+    // first frame), for --verbose: the writers call `render` between their batches of encoding,
+    // never during them, so this is the time the frames alone take.
+    let mut render_time = Duration::ZERO;
+    let mut rendered = 0u32;
+    let mut render_frame = |world: &mut World, t: f64, rgba: &mut Vec<u8>| -> Result<()> {
+        let start = Instant::now();
+        world.update(t)?;
+        renderer.render(world).encode_rgba8(exposure, gamma, rgba);
+        render_time += start.elapsed();
+        rendered += 1;
+        Ok(())
+    };
+    let frame_time = |k: u32| time + f64::from(k) / a.fps;
+    let bar = |len: usize, what: &str| {
+        let bar = ProgressBar::new(len as u64).with_style(
+            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} frames, {elapsed} elapsed, ETA {eta}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        bar.set_message(format!("rendering {what}"));
+        bar
+    };
+    let mut wrote = a.out.display().to_string();
+    pool.install(|| match &output {
         Output::Png => {
             super::advance_with_progress(&mut world, time)?;
             let mut rgba = Vec::new();
-            renderer.render(&world).encode_rgba8(exposure, gamma, &mut rgba);
+            render_frame(&mut world, time, &mut rgba)?;
             write_png(&a.out, width, height, &rgba)
         }
         Output::Gif { frames } => {
-            let bar = ProgressBar::new(u64::from(frames.len())).with_style(
-                ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} frames, {elapsed} elapsed, ETA {eta}")
-                    .expect("valid template")
-                    .progress_chars("=> "),
-            );
-            bar.set_message(format!("rendering {}", a.out.display()));
-            super::advance_with_progress(&mut world, time + f64::from(frames.first) / a.fps)?;
+            let bar = bar(frames.len() as usize, &wrote);
+            super::advance_with_progress(&mut world, frame_time(frames.first))?;
             // issue 10: SIGINT/SIGTERM abandon the animation between frames; the GIF is written
             // atomically, so nothing is left under its name.
             let interrupt = crate::interrupt::Interrupt::install()?;
@@ -101,40 +135,102 @@ pub fn run(a: RenderArgs) -> Result<()> {
                 a.fps,
                 |k, rgba| {
                     interrupt.check(format_args!("{} not written", a.out.display()))?;
-                    world.update(time + f64::from(frames.first + k as u32) / a.fps)?;
-                    renderer.render(&world).encode_rgba8(exposure, gamma, rgba);
-                    Ok(())
+                    render_frame(&mut world, frame_time(frames.first + k as u32), rgba)
                 },
                 || bar.inc(1),
             );
             bar.finish_and_clear();
             result
         }
+        Output::PngSequence { frames, pattern } => {
+            let todo = pending_frames(pattern, *frames, width, height, a.resume);
+            let skipped = frames.len() as usize - todo.len();
+            wrote = format!("{} frames to {}", todo.len(), a.out.display());
+            if skipped > 0 {
+                wrote += &format!(" ({skipped} already complete, skipped)");
+            }
+            let Some(&first) = todo.first() else { return Ok(()) };
+            let bar = bar(todo.len(), &a.out.display().to_string());
+            super::advance_with_progress(&mut world, frame_time(first))?;
+            // Each frame is its own atomic file: an interrupted sequence keeps its whole frames, and
+            // --resume continues from them.
+            let interrupt = crate::interrupt::Interrupt::install()?;
+            let written = Cell::new(0usize);
+            let result = write_png_sequence(
+                pattern,
+                &todo,
+                width,
+                height,
+                |k, rgba| {
+                    interrupt.check(format_args!(
+                        "{} of {} frames written, each complete; the others not written (--resume continues)",
+                        written.get(),
+                        todo.len(),
+                    ))?;
+                    render_frame(&mut world, frame_time(k), rgba)
+                },
+                || {
+                    written.set(written.get() + 1);
+                    bar.inc(1);
+                },
+            );
+            bar.finish_and_clear();
+            result
+        }
     })?;
-    eprintln!("wrote {}", a.out.display());
+    eprintln!("wrote {wrote}");
+    if a.verbose {
+        let (render, total) = (render_time.as_secs_f64(), started.elapsed().as_secs_f64());
+        eprintln!(
+            "rendered {rendered} frames in {render:.3} s ({:.1} ms a frame); the whole command took {total:.3} s, \
+             {:.2} x the rendering",
+            1e3 * render / f64::from(rendered.max(1)),
+            total / render.max(1e-9),
+        );
+    }
     Ok(())
 }
 
-/// Decides PNG or GIF from the extension and checks everything about the output before any work.
+/// Decides PNG, GIF or PNG sequence from the extension and a `%` pattern, and checks everything
+/// about the output before any work.
 fn resolve_output(a: &RenderArgs) -> Result<Output> {
     let ext = a.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let frames = a.frames.as_deref().map(|f| FrameRange::parse("--frames", f)).transpose()?;
     if !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= MAX_FPS) {
         return Err(Error::out_of_range("--fps", a.fps, format!("(0, {MAX_FPS}]")));
     }
+    let is_pattern = FramePattern::is_pattern(&a.out);
     let output = match (ext.as_deref(), frames) {
-        (Some("png"), None) => Output::Png,
-        (Some("png"), Some(_)) => {
-            return Err(Error::invalid("--out", "--frames writes an animation: give a .gif output"))
-        }
-        (Some("gif"), Some(frames)) => {
-            if frames.len() > MAX_FRAMES {
-                return Err(Error::out_of_range(
-                    "--frames",
-                    format!("{} frames", frames.len()),
-                    format!("[1, {MAX_FRAMES}] frames"),
+        (Some("png"), None) => {
+            // A name such as `sea_%04d.png` was meant for a sequence; another `%` is just a character.
+            if is_pattern && FramePattern::parse("--out", &a.out).is_ok() {
+                return Err(Error::invalid(
+                    "--out",
+                    format!(
+                        "`{}` is a PNG sequence pattern: it needs --frames N (frames 0 to N-1) or A..B",
+                        a.out.display()
+                    ),
                 ));
             }
+            Output::Png
+        }
+        (Some("png"), Some(frames)) => {
+            if !is_pattern {
+                return Err(Error::invalid(
+                    "--out",
+                    format!(
+                        "`{}` is one file, but --frames writes an animation: give a .gif output, or a PNG \
+                         sequence pattern with the frame number as %04d (e.g. frames/sea_%04d.png)",
+                        a.out.display()
+                    ),
+                ));
+            }
+            let pattern = FramePattern::parse("--out", &a.out)?;
+            check_frame_count(frames)?;
+            Output::PngSequence { frames, pattern }
+        }
+        (Some("gif"), Some(frames)) => {
+            check_frame_count(frames)?;
             if a.fps > MAX_GIF_FPS {
                 return Err(Error::out_of_range(
                     "--fps",
@@ -153,12 +249,48 @@ fn resolve_output(a: &RenderArgs) -> Result<Output> {
         _ => {
             return Err(Error::invalid(
                 "--out",
-                format!("{} must end in .png (one frame) or .gif (an animation)", a.out.display()),
+                format!(
+                    "{} must end in .png (one frame, or with --frames a sequence pattern such as \
+                     frames/sea_%04d.png) or .gif (an animation)",
+                    a.out.display()
+                ),
             ))
         }
     };
-    super::check_output_dir(&a.out)?;
+    if a.resume && !matches!(output, Output::PngSequence { .. }) {
+        return Err(Error::invalid(
+            "--resume",
+            "applies to a PNG sequence (--frames with --out such as frames/sea_%04d.png); a PNG or GIF is \
+             written whole",
+        ));
+    }
+    if let Output::PngSequence { pattern, .. } = &output {
+        if !pattern.dir().is_dir() {
+            return Err(Error::invalid(
+                "--out",
+                format!(
+                    "directory {} of the sequence `{}` does not exist (create it first)",
+                    pattern.dir().display(),
+                    a.out.display()
+                ),
+            ));
+        }
+    } else {
+        super::check_output_dir(&a.out)?;
+    }
     Ok(output)
+}
+
+/// Refuses more frames than one command renders ([`MAX_FRAMES`]).
+fn check_frame_count(frames: FrameRange) -> Result<()> {
+    if frames.len() > MAX_FRAMES {
+        return Err(Error::out_of_range(
+            "--frames",
+            format!("{} frames", frames.len()),
+            format!("[1, {MAX_FRAMES}] frames"),
+        ));
+    }
+    Ok(())
 }
 
 /// Parses `WIDTHxHEIGHT`, each side in [1, MAX_IMAGE_SIDE].

@@ -2,8 +2,9 @@
 
 use std::path::Path;
 
-use rayon::prelude::*;
-
+use super::frame_batches::render_then_encode;
+use super::median_cut::median_cut_palette;
+use super::ordered_dither::dither_to_palette;
 use super::write_atomically;
 use crate::error::{Error, Result};
 
@@ -32,10 +33,11 @@ pub fn gif_delay_cs(k: usize, fps: f64) -> u16 {
 /// Writes a looping GIF animation of `frame_count` frames at `fps` frames per second (in (0,
 /// [`MAX_GIF_FPS`]], delays from [`gif_delay_cs`]), atomically.
 ///
-/// `render(k, rgba)` fills `rgba` with frame k (RGBA8, `width` x `height`, top row first);
-/// `progress()` is called after each frame is written. Frames are produced in order, then
-/// palette-quantised (NeuQuant, the slow part) a batch at a time in parallel, so memory stays
-/// bounded however many frames there are.
+/// `render(k, rgba)` fills `rgba` with frame k (RGBA8, `width` x `height`, top row first; alpha
+/// is ignored, every pixel is opaque); `progress()` is called after each frame is written. Frames
+/// are rendered in order and turned into GIF frames ([`gif_frame`]) a batch at a time in
+/// parallel, so memory stays bounded however many frames there are, and the file does not depend
+/// on the number of threads.
 pub fn write_gif(
     path: &Path,
     width: u16,
@@ -46,33 +48,51 @@ pub fn write_gif(
     mut progress: impl FnMut(),
 ) -> Result<()> {
     let gif_err = |e: gif::EncodingError| Error::Image { path: path.into(), message: e.to_string() };
-    let batch = 2 * rayon::current_num_threads().max(1);
+    let frames: Vec<u32> = (0..frame_count as u32).collect();
     write_atomically(path, |out| {
         let mut enc = gif::Encoder::new(out, width, height, &[]).map_err(gif_err)?;
         enc.set_repeat(gif::Repeat::Infinite).map_err(gif_err)?;
-        let mut buffers: Vec<Vec<u8>> = vec![Vec::new(); batch.min(frame_count)];
-        for start in (0..frame_count).step_by(batch) {
-            let n = batch.min(frame_count - start);
-            for (k, buf) in buffers[..n].iter_mut().enumerate() {
-                render(start + k, buf)?;
-            }
-            let frames: Vec<gif::Frame> = buffers[..n]
-                .par_iter_mut()
-                .enumerate()
-                .map(|(k, rgba)| {
-                    // Speed 10 is the gif crate's recommended balance; 1 is best and ~10x slower.
-                    let mut f = gif::Frame::from_rgba_speed(width, height, rgba, 10);
-                    f.delay = gif_delay_cs(start + k, fps);
-                    f
-                })
-                .collect();
-            for f in &frames {
-                enc.write_frame(f).map_err(gif_err)?;
+        render_then_encode(
+            &frames,
+            |k, rgba| render(k as usize, rgba),
+            |k, rgba| {
+                let mut f = gif_frame(width, height, rgba);
+                f.delay = gif_delay_cs(k as usize, fps);
+                Ok(f)
+            },
+            |_, f| {
+                enc.write_lzw_pre_encoded_frame(&f).map_err(gif_err)?;
                 progress();
-            }
-        }
-        Ok(())
+                Ok(())
+            },
+        )
     })
+}
+
+/// Largest peak-to-peak amplitude of the GIF frames' ordered dither, in 8-bit levels: the dither
+/// follows the palette's spacing ([`dither_to_palette`]), a few levels in a sea's blues, more in
+/// a sunset; past this an isolated colour (the sun, a highlight) would turn to visible grain.
+pub const GIF_MAX_DITHER_LEVELS: u8 = 24;
+
+/// One GIF frame of an RGBA8 image (alpha ignored), LZW-compressed and ready to write: its own
+/// palette of 256 colours by median cut ([`median_cut_palette`]), the pixels mapped onto it with
+/// ordered dithering ([`dither_to_palette`], [`GIF_MAX_DITHER_LEVELS`]); an image of at most 256
+/// colours keeps them exactly, undithered. Depends on the image alone.
+pub fn gif_frame(width: u16, height: u16, rgba: &[u8]) -> gif::Frame<'static> {
+    debug_assert_eq!(rgba.len(), 4 * usize::from(width) * usize::from(height));
+    let w = usize::from(width);
+    let (palette, exact) = median_cut_palette(rgba, w, 256);
+    let indices = if exact {
+        // The palette is sorted (the colours came out of a sort): each pixel's colour is in it.
+        let key = |p: &[u8]| [p[0], p[1], p[2]];
+        rgba.chunks_exact(4).map(|p| palette.binary_search(&key(p)).unwrap_or(0) as u8).collect()
+    } else {
+        dither_to_palette(rgba, w, &palette, GIF_MAX_DITHER_LEVELS)
+    };
+    let flat: Vec<u8> = palette.iter().flatten().copied().collect();
+    let mut frame = gif::Frame::from_palette_pixels(width, height, indices, flat, None);
+    frame.make_lzw_pre_encoded();
+    frame
 }
 
 /// Writes a map of `channels` (1 = grey, 3 = RGB) samples per pixel as an 8- or 16-bit PNG,

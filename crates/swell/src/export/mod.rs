@@ -12,6 +12,12 @@ mod heightmap_exr;
 mod named_mesh;
 mod normal_space;
 mod obj;
+// issue 33: a GIF at the renderer's speed, and PNG sequences.
+mod frame_batches;
+mod frame_pattern;
+mod median_cut;
+mod ordered_dither;
+mod png_sequence;
 
 pub use self::exr::{write_exr_gray, write_exr_rgb, ExrCompression};
 pub use array_job::{resolve_shard, ResolvedShard, SHARD_COUNT_VAR};
@@ -21,10 +27,16 @@ pub use bake::{model_loop_period, Bake, BakeSettings, MAX_FPS, MIN_PNG_RANGE_M, 
 pub use bake_manifest::{
     AxisConversion, BakeAxes, BakeFoam, BakeGrid, BakeManifest, BakeMap, BakePng, BakeUnits, BAKE_MANIFEST_VERSION,
 };
+pub use frame_pattern::{FramePattern, MAX_PATTERN_WIDTH};
 pub use frame_range::{FrameRange, Shard, MAX_FRAME, MAX_SHARDS};
 pub use gltf::{gltf_document, write_glb, write_gltf};
 pub use heightmap_exr::write_heightmap_exr;
-pub use image_file::{gif_delay_cs, write_gif, write_png, write_png_map, MAX_GIF_FPS};
+pub use image_file::{
+    gif_delay_cs, gif_frame, write_gif, write_png, write_png_map, GIF_MAX_DITHER_LEVELS, MAX_GIF_FPS,
+};
+pub use median_cut::{median_cut_palette, CHANNEL_WEIGHTS};
 pub use named_mesh::{world_meshes, NamedMesh};
 pub use normal_space::NormalSpace;
 pub use obj::{encode_obj, write_obj};
+pub use ordered_dither::dither_to_palette;
+pub use png_sequence::{is_complete_png, pending_frames, write_png_sequence};
