@@ -15,6 +15,7 @@ mod mesh_pass;
 mod mesh_view_json;
 mod overlay_pass;
 mod reflection_pass;
+mod render_stages;
 mod sea_lod;
 mod shaded_draw;
 mod sky_pass;
@@ -27,6 +28,7 @@ use crate::shading::Environment;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
 pub use mesh_view_json::{parse_camera_json, parse_light_json, MeshView, MAX_VIEW_JSON_BYTES};
+pub use render_stages::RenderStages;
 
 /// Renders [`World`]s, keeping its buffers from frame to frame so steady-state frames do not
 /// allocate.
@@ -49,12 +51,19 @@ pub struct Renderer {
     sky: Option<crate::scene::SkyRadiance>,
     /// The scene's lights as the sky drives them (`[sky] sun_drives_light`).
     lights: Vec<crate::scene::Light>,
+    /// Where the last frame's time went.
+    stages: RenderStages,
 }
 
 impl Renderer {
     /// A renderer with no buffers yet.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Wall time of each pass of the last render.
+    pub fn last_stages(&self) -> RenderStages {
+        self.stages
     }
 
     /// Renders `world` at its scene's `[render]` size.
@@ -90,7 +99,16 @@ impl Renderer {
             camera: &scene.camera,
             size: (w, h),
         };
+        let mut stages = RenderStages::default();
+        let mut clock = std::time::Instant::now();
+        // Adds the time since the last mark to a stage.
+        let mut mark = |stage: &mut std::time::Duration| {
+            let now = std::time::Instant::now();
+            *stage += now - clock;
+            clock = now;
+        };
         sky_pass::clear_depth(fb);
+        mark(&mut stages.sky);
         let mut reflection = None;
         if let Some(terrain) = &world.terrain {
             terrain_pass::draw(fb, &frame, terrain, &mut self.terrain_draw);
@@ -103,6 +121,7 @@ impl Renderer {
                 let draw = &mut self.terrain_draw;
                 reflection = reflection_pass::draw(&mut self.reflection_scratch, &frame, terrain, draw, water_box);
             }
+            mark(&mut stages.terrain);
         }
         if let Some(water) = &world.water {
             let surface = &water.surface;
@@ -110,6 +129,7 @@ impl Renderer {
                 // Only what depends on the image is done here: the footprint filter.
                 Some(rings) => {
                     let sea = self.sea.filter(rings, &water.slopes, water.placement.scale, &scene.camera, h);
+                    mark(&mut stages.sea_filter);
                     shaded_draw::ShadedMesh {
                         positions: &rings.positions,
                         normals: sea.normals,
@@ -135,13 +155,16 @@ impl Renderer {
                 world.terrain.as_ref(),
                 reflection.as_ref(),
             );
+            mark(&mut stages.water);
             if water.extent == WaterExtent::Unbounded {
                 let lobe = crate::shading::Lobe::of(water.material.shading);
                 far_field_pass::draw(fb, &frame, &scene.camera, water, &water.slopes, lobe);
+                mark(&mut stages.far_field);
             }
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
         sky_pass::draw(fb, &scene.camera, frame.env.sky, frame.env.sun.as_ref());
+        mark(&mut stages.sky);
         if let Some(water) = &world.water {
             let scale = water.placement.scale;
             overlay_pass::draw(fb, &frame, &water.surface, scale, scene.render.wireframe, scene.render.normals);
@@ -151,6 +174,8 @@ impl Renderer {
             let out = self.framebuffer.get_or_insert_with(|| Framebuffer::new(width, height));
             out.downsample_from(hi, ss);
         }
+        mark(&mut stages.finish);
+        self.stages = stages;
         self.framebuffer.as_ref().expect("rendered above")
     }
 }
