@@ -9,7 +9,7 @@
 //!   [`swell_last_error_message`] on the calling thread.
 //!
 //! Handles are `Box`es of a `Mutex` around the library's [`swell_lib::Water`] or a rendered
-//! [`swell_lib::scene::World`]; the lock serialises calls on one handle. Each handle runs its work
+//! [`swell_lib::world::World`]; the lock serialises calls on one handle. Each handle runs its work
 //! on its own rayon pool, whose threads are joined when the handle is destroyed: the library
 //! leaves no thread behind (rayon's global pool, never joined, would still be running at exit,
 //! which valgrind reports as possibly lost thread memory).
@@ -24,7 +24,8 @@ use std::thread::JoinHandle;
 
 use glam::{Vec2, Vec3};
 use swell_lib::render::Renderer;
-use swell_lib::scene::{Scene, World};
+use swell_lib::scene::Scene;
+use swell_lib::world::World;
 use swell_lib::{Error, Water};
 
 /// What a call did: `SWELL_RESULT_OK` (0) or the kind of failure; the message is

@@ -95,6 +95,6 @@ fn bake_maps_and_the_exported_mesh_are_the_query_api_s_numbers() {
 #[test]
 fn stats_json_is_the_library_s() {
     let out = swell(&["stats", "--preset", "ocean", "--time", "1.5"]);
-    let stats = swell::scene::sea_stats(&swell::scene::preset("ocean").unwrap(), 1.5).unwrap();
+    let stats = swell::world::sea_stats(&swell::scene::preset("ocean").unwrap(), 1.5).unwrap();
     assert_eq!(out.trim_end(), serde_json::to_string_pretty(&stats).unwrap());
 }

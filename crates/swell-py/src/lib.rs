@@ -13,7 +13,8 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
 use swell::render::Renderer;
-use swell::scene::{sea_stats, Scene, World, MAX_IMAGE_SIDE};
+use swell::scene::{Scene, MAX_IMAGE_SIDE};
+use swell::world::{sea_stats, World};
 
 /// The name scene texts are known by in error messages (the C API's too).
 const SOURCE: &str = "toml";

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use eframe::egui::{self, Color32, Key, PointerButton, Rect, Sense, ViewportCommand};
-use swell::scene::TerrainBody;
+use swell::world::TerrainBody;
 use swell::{Error, Result};
 
 use crate::camera_control::CameraRig;

@@ -7,7 +7,7 @@ pub const MAX_FRAME_DT: f64 = 0.1;
 /// Fastest playback, as a multiple of real time.
 pub const MAX_SPEED: f64 = 16.0;
 
-/// The simulation clock the viewer drives [`swell::scene::World::update`] with.
+/// The simulation clock the viewer drives [`swell::world::World::update`] with.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Clock {
     /// Simulation time, seconds.

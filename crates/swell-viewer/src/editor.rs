@@ -17,7 +17,8 @@
 
 use std::path::Path;
 
-use swell::scene::{Camera, Scene, TerrainBody, World};
+use swell::scene::{Camera, Scene};
+use swell::world::{TerrainBody, World};
 use swell::{Error, Result};
 
 /// What [`SceneEditor::frame_failed`] made of a failed frame.

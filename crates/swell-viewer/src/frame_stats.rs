@@ -18,7 +18,7 @@ pub const WARMUP_FRAMES: u64 = 5;
 pub struct FrameTimes {
     /// Wall-clock time from one shown frame to the next (1 / fps).
     pub frame: f64,
-    /// [`swell::scene::World::update`]: moving the water.
+    /// [`swell::world::World::update`]: moving the water.
     pub simulate: f64,
     /// `Renderer::render_size` and the RGBA8 encoding.
     pub render: f64,

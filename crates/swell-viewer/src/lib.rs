@@ -2,7 +2,7 @@
 //!
 //! `swell view --preset sea` opens it. This is the only swell crate with window dependencies
 //! (eframe/egui with the glow backend under X11); everything it shows is computed by the `swell`
-//! library: [`swell::scene::World::update`] moves the water and
+//! library: [`swell::world::World::update`] moves the water and
 //! [`swell::render::Renderer::render_size`] draws it on the CPU at the view's pixel size, on the
 //! render thread, one frame ahead of the paint; the window only displays the image (a texture
 //! blitted to the window).

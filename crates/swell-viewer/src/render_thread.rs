@@ -14,7 +14,8 @@ use std::thread::JoinHandle;
 use std::time::Instant;
 
 use swell::render::Renderer;
-use swell::scene::{Scene, World, MAX_IMAGE_SIDE};
+use swell::scene::{Scene, MAX_IMAGE_SIDE};
+use swell::world::World;
 use swell::{Error, Result};
 
 use crate::frame::{FrameKey, StageTimes};

@@ -9,7 +9,8 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use swell::export::{write_exr_rgb, Bake, BakeSettings, ExrCompression, FrameRange};
-use swell::scene::{preset, World};
+use swell::scene::preset;
+use swell::world::World;
 
 /// Frames per measured bake iteration: enough to fill the simulate/write pipeline.
 const FRAMES: u32 = 16;

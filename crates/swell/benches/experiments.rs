@@ -15,8 +15,9 @@ use swell::math::GridSpec;
 use swell::mesh::SurfaceMesh;
 use swell::raster::{draw, ClipVertex, Cull, Framebuffer};
 use swell::render::Renderer;
-use swell::scene::{preset, WaterModelSpec, World};
+use swell::scene::{preset, WaterModelSpec};
 use swell::water::{Gerstner, GerstnerWave, WaveModel};
+use swell::world::World;
 
 /// Paper 000 figure 4.1's main wave (1 unit = 0.1 m, A/L = 0.07) and 3 added waves.
 fn paper000_waves() -> Vec<GerstnerWave> {

@@ -15,7 +15,8 @@ use glam::Vec3;
 use swell::mesh::TriangleMesh;
 use swell::render::{MeshLight, MeshRenderer, Renderer};
 use swell::scene::Shading;
-use swell::scene::{preset, Camera, World};
+use swell::scene::{preset, Camera};
+use swell::world::World;
 
 /// A deterministic bumpy 513 x 513 grid over 100 m x 100 m: a sum of sines standing in for a
 /// diamond-square terrain (which lives in another module), with the same triangle count.

@@ -10,7 +10,8 @@
 use std::time::Instant;
 
 use swell::render::Renderer;
-use swell::scene::{preset, World};
+use swell::scene::preset;
+use swell::world::World;
 
 fn main() -> swell::Result<()> {
     let mut args = std::env::args().skip(1);

@@ -8,8 +8,9 @@ use glam::Vec2;
 use swell::export::write_png;
 use swell::render::Renderer;
 use swell::scene::GerstnerSpec;
-use swell::scene::{preset, WaterModelSpec, World};
+use swell::scene::{preset, WaterModelSpec};
 use swell::water::{Gerstner, GerstnerWave};
+use swell::world::World;
 
 fn main() -> swell::Result<()> {
     // Start from a preset for the camera, lights and sky, then set the model through the library.

@@ -6,8 +6,9 @@ use std::path::PathBuf;
 
 use swell::export::write_png;
 use swell::render::Renderer;
-use swell::scene::{preset, WaterModelSpec, World};
+use swell::scene::{preset, WaterModelSpec};
 use swell::water::NoiseParams;
+use swell::world::World;
 
 fn main() -> swell::Result<()> {
     // Start from a preset for the camera, lights and sky, then set the model through the library.

@@ -7,9 +7,10 @@ use std::path::PathBuf;
 use glam::Vec2;
 use swell::export::write_png;
 use swell::render::Renderer;
-use swell::scene::{preset, WaterModelSpec, World};
+use swell::scene::{preset, WaterModelSpec};
 use swell::spectrum::Dispersion;
 use swell::water::{TessendorfParams, TessendorfWave};
+use swell::world::World;
 
 fn main() -> swell::Result<()> {
     // Start from a preset for the camera, lights and sky, then set the model through the library.

@@ -3,8 +3,8 @@
 //! The crate follows the data flow of a frame:
 //!
 //! ```text
-//! parameters ─▶ water / terrain model ─▶ surface mesh ─▶ scene ─▶ rasterizer + shading ─▶ image / file
-//!   (scene)        (water::*)              (mesh::*)     (scene::*)  (raster::*, shading::*)  (export::*)
+//! parameters ─▶ water / terrain model ─▶ surface mesh ─▶ world ─▶ rasterizer + shading ─▶ image / file
+//!   (scene)        (water::*)              (mesh::*)     (world::*)  (raster::*, shading::*)  (export::*)
 //! ```
 //!
 //! A program that only wants moving water needs [`water`] and [`mesh`]; the renderer is optional.
@@ -16,10 +16,10 @@
 //! on glam, rayon, serde, rand, rustfft and thiserror only, none of image, exr, gif, toml,
 //! serde_json or tempfile.
 //!
-//! - **`render`**: scenes (`scene`, with `Water` and scene files in TOML), `shading` with image
-//!   textures, the CPU rasterizer `raster`, the passes in `render`, PNG heightmaps in `terrain`, and
-//!   the atomic file writes in `io`. One feature because a scene is what the passes draw and it
-//!   loads image textures and PNG heightmaps.
+//! - **`render`**: scenes (`scene`, scene files in TOML), the world built from them (`world`, with
+//!   `Water`), `shading` with image textures, the CPU rasterizer `raster`, the passes in `render`,
+//!   PNG heightmaps in `terrain`, and the atomic file writes in `io`. One feature because a scene
+//!   is what the passes draw and it loads image textures and PNG heightmaps.
 //! - **`export`**: writing results, the `export` module (PNG, GIF, EXR, OBJ, glTF, bake sequences);
 //!   implies `render`, since what it writes comes from scenes.
 //!
@@ -83,10 +83,12 @@ pub mod shading;
 pub mod spectrum;
 pub mod terrain;
 pub mod water;
+#[cfg(feature = "render")]
+pub mod world;
 
 pub use error::{Error, Result};
 #[cfg(feature = "render")]
-pub use scene::Water;
+pub use world::Water;
 
 /// Standard gravity g in m/s², used by every dispersion relation.
 pub const GRAVITY: f32 = 9.81;

@@ -271,9 +271,9 @@ fn blank_test_items(code: &mut [u8]) -> Vec<String> {
 
 /// A library source file with its test code and comments blanked.
 struct SourceFile {
-    /// Relative to the workspace root, e.g. `crates/swell/src/scene/world.rs`.
+    /// Relative to the workspace root, e.g. `crates/swell/src/world/world.rs`.
     path: String,
-    /// The module path, e.g. `["scene", "world"]`; empty for lib.rs.
+    /// The module path, e.g. `["world", "world"]`; empty for lib.rs.
     module: Vec<String>,
     code: Vec<u8>,
 }
@@ -829,7 +829,7 @@ fn after() { crate::limits::MAX; crate::GRAVITY; }
 "##;
     let modules =
         ["math", "raster", "shading", "water", "render", "spectrum", "terrain", "limits", "error", "export", "scene"];
-    let found = scan("crates/swell/src/scene/world.rs", src, &modules);
+    let found = scan("crates/swell/src/world/world.rs", src, &modules);
     let expect: Vec<(usize, String)> = [
         (2, "math"),
         (3, "raster"),

@@ -69,7 +69,7 @@ fn every_sky_model_renders_finite_and_round_trips() {
         );
         let scene = Scene::from_toml(&text, "t").unwrap_or_else(|e| panic!("{model}: {e}"));
         assert_eq!(Scene::from_toml(&scene.to_toml(), "again").unwrap(), scene, "{model}");
-        let world = swell::scene::World::new(scene).unwrap();
+        let world = swell::world::World::new(scene).unwrap();
         let image = swell::render::Renderer::new().render(&world).color.clone();
         assert!(image.iter().all(|c| c.is_finite()), "{model}");
     }
@@ -87,7 +87,7 @@ fn every_shading_model_renders_water_and_terrain() {
         );
         let scene = Scene::from_toml(&text, "t").unwrap_or_else(|e| panic!("{shading}: {e}"));
         assert_eq!(Scene::from_toml(&scene.to_toml(), "again").unwrap(), scene, "{shading}");
-        let world = swell::scene::World::new(scene).unwrap();
+        let world = swell::world::World::new(scene).unwrap();
         let image = swell::render::Renderer::new().render(&world).color.clone();
         assert!(image.iter().all(|c| c.is_finite()), "{shading}");
     }

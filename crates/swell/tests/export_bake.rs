@@ -10,7 +10,8 @@ use swell::export::{
     gltf_document, world_meshes, write_glb, write_gltf, write_obj, Bake, BakeManifest, BakeSettings, FrameRange,
 };
 use swell::math::GridSpec;
-use swell::scene::{Scene, World};
+use swell::scene::Scene;
+use swell::world::World;
 
 /// A small Gerstner sea (two waves, 24 x 16 cells over 40 m x 30 m, off-centre).
 const SEA: &str = r#"

@@ -5,13 +5,14 @@
 //! one and two threads.
 //!
 //! (The far land's mesh is tested for watertightness and winding in `terrain/far_land.rs`, its
-//! skyline in `scene/terrain_far_land.rs`.)
+//! skyline in `world/terrain_far_land.rs`.)
 
 use glam::{Vec2, Vec3};
 use swell::math::Transform;
 use swell::raster::Framebuffer;
 use swell::render::Renderer;
-use swell::scene::{preset, Scene, World};
+use swell::scene::{preset, Scene};
+use swell::world::World;
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;

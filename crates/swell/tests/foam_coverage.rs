@@ -11,7 +11,8 @@
 
 use glam::Vec3;
 use swell::render::Renderer;
-use swell::scene::{preset, sea_stats, Light, Scene, WaterExtent, World};
+use swell::scene::{preset, Light, Scene, WaterExtent};
+use swell::world::{sea_stats, World};
 
 /// Image side, pixels: 65 536 samples of a 256 m tile (1 m per pixel, the FFT's own spacing).
 const SIDE: u32 = 256;

@@ -9,7 +9,8 @@ use std::path::PathBuf;
 use swell::export::write_png;
 use swell::render::Renderer;
 use swell::scene::Shading;
-use swell::scene::{preset, Scene, World, PRESETS};
+use swell::scene::{preset, Scene, PRESETS};
+use swell::world::World;
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;

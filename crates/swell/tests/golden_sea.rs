@@ -6,7 +6,8 @@
 use std::path::PathBuf;
 
 use swell::render::Renderer;
-use swell::scene::{preset, World};
+use swell::scene::preset;
+use swell::world::World;
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;

@@ -7,7 +7,8 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use swell::scene::{Scene, World};
+use swell::scene::Scene;
+use swell::world::World;
 
 /// The system allocator, counting live bytes and their peak.
 struct Counting;

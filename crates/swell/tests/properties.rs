@@ -9,7 +9,8 @@
 
 use proptest::prelude::*;
 use swell::render::Renderer;
-use swell::scene::{Scene, World};
+use swell::scene::Scene;
+use swell::world::World;
 
 /// Any finite f32, weighted towards the ranges where parameters are valid.
 fn finite() -> impl Strategy<Value = f32> {

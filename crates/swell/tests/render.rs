@@ -2,8 +2,9 @@
 //! 1, 2 and 3 threads, and shading models differ where they should.
 
 use swell::render::Renderer;
+use swell::scene::preset;
 use swell::scene::Shading;
-use swell::scene::{preset, World};
+use swell::world::World;
 
 fn render(shading: Shading, threads: usize) -> Vec<[u32; 3]> {
     let mut scene = preset("sea").unwrap();
@@ -164,7 +165,7 @@ fn calm_water_mirrors_the_hill_above_it_weighted_by_fresnel() {
     let env = Environment {
         lights: &scene.lights,
         ambient: scene.render.ambient,
-        sky: &swell::scene::SkyRadiance::new(&scene.sky),
+        sky: &swell::shading::SkyRadiance::new(&scene.sky),
         sun: scene.sky.sun(&scene.lights),
         eye,
         time: world.time(),

@@ -5,9 +5,10 @@
 use glam::Vec2;
 use swell::render::Renderer;
 use swell::scene::WaterModelSpec;
-use swell::scene::{preset, Scene, SkyModel, World};
+use swell::scene::{preset, Scene, SkyModel};
 use swell::shading::{NoBottom, WaterLook};
 use swell::water::{River, RiverParams};
+use swell::world::World;
 
 /// The river preset with still banks and no ripples, so that only the texture can move.
 fn still_river() -> Scene {

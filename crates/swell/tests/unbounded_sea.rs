@@ -8,7 +8,8 @@
 
 use glam::{Vec3, Vec4};
 use swell::render::Renderer;
-use swell::scene::{preset, Scene, WaterExtent, World};
+use swell::scene::{preset, Scene, WaterExtent};
+use swell::world::World;
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;

@@ -18,9 +18,10 @@ use glam::{Vec2, Vec3};
 use swell::render::Renderer;
 use swell::scene::{
     Camera, GerstnerSpec, Light, RenderSettings, Scene, Sky, WaterMaterial, WaterModelSpec, WaterSpec, WaterSurface,
-    World, SCENE_VERSION,
+    SCENE_VERSION,
 };
 use swell::water::GerstnerWave;
+use swell::world::World;
 use swell::Result;
 
 use super::report::{PaperUnit, PlotKind, Point, Report, Series};

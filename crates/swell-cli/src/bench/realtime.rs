@@ -2,7 +2,8 @@
 //! sea in real time on the CPU only).
 
 use swell::render::Renderer;
-use swell::scene::{preset, World, PRESETS};
+use swell::scene::{preset, PRESETS};
+use swell::world::World;
 use swell::Result;
 
 use super::report::{PaperUnit, PlotKind, Point, Report, Series};

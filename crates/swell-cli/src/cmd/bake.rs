@@ -6,7 +6,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use swell::export::{
     model_loop_period, resolve_shard, Bake, BakeSettings, ExrCompression, FrameRange, NormalSpace, Shard,
 };
-use swell::scene::World;
+use swell::world::World;
 use swell::Result;
 
 use super::{load_scene, thread_pool};

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use swell::export::{world_meshes, write_glb, write_gltf, write_obj, FrameRange, MAX_FPS};
-use swell::scene::World;
+use swell::world::World;
 use swell::{Error, Result};
 
 use super::bake::progress_bar;

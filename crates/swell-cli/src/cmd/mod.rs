@@ -12,7 +12,8 @@ mod view;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use swell::error::Human;
-use swell::scene::{preset, Scene, World};
+use swell::scene::{preset, Scene};
+use swell::world::World;
 
 pub use crate::thread_pool::thread_pool;
 use swell::water::MAX_STEPS_PER_ADVANCE;

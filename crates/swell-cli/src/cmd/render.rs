@@ -13,7 +13,8 @@ use swell::export::{
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
 use swell::scene::Shading;
-use swell::scene::{Camera, World, MAX_IMAGE_SIDE};
+use swell::scene::{Camera, MAX_IMAGE_SIDE};
+use swell::world::World;
 use swell::{Error, Result};
 
 use super::{load_scene, thread_pool};

@@ -1,6 +1,6 @@
-//! `swell stats`: the sea state a spectral scene realises, as JSON ([`swell::scene::sea_stats`]).
+//! `swell stats`: the sea state a spectral scene realises, as JSON ([`swell::world::sea_stats`]).
 
-use swell::scene::sea_stats;
+use swell::world::sea_stats;
 use swell::Result;
 
 use super::load_scene;

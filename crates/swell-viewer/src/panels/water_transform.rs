@@ -99,7 +99,8 @@ pub fn show(ui: &mut Ui, s: &mut WaterSurface, form: &mut WaterTransformForm) ->
 #[cfg(test)]
 mod tests {
     use glam::Vec2;
-    use swell::scene::{preset, Scene, World};
+    use swell::scene::{preset, Scene};
+    use swell::world::World;
 
     use super::*;
 

@@ -23,7 +23,8 @@
 //!
 //! ```
 //! use swell::export::{Bake, BakeSettings, FrameRange};
-//! use swell::scene::{preset, World};
+//! use swell::scene::preset;
+//! use swell::world::World;
 //!
 //! let mut scene = preset("sea")?;
 //! scene.water.as_mut().unwrap().surface.cells = [32, 32];
@@ -52,7 +53,7 @@ use super::{write_atomically, write_exr_gray, write_exr_rgb, write_png_map, ExrC
 use crate::error::{Error, Result};
 use crate::math::GridSpec;
 use crate::mesh::SurfaceMesh;
-use crate::scene::World;
+use crate::world::World;
 
 /// Highest frame rate a bake accepts, frames per second.
 pub const MAX_FPS: f64 = 1000.0;

@@ -2,7 +2,8 @@
 //!
 //! ```
 //! use swell::export::{world_meshes, write_glb, write_obj};
-//! use swell::scene::{preset, World};
+//! use swell::scene::preset;
+//! use swell::world::World;
 //!
 //! let mut world = World::new(preset("sea")?)?;
 //! world.advance(2.5)?; // the models only: an export samples the patch, it draws nothing
@@ -18,7 +19,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::mesh::SurfaceMesh;
-use crate::scene::World;
+use crate::world::World;
 
 /// One triangle mesh to export, borrowed from wherever it lives.
 ///

@@ -1,10 +1,10 @@
 //! The water surface a frame draws, in one place: the finite patch, or the camera-following rings
 //! of an unbounded sea (issue 24/33: one owner for the drawn water).
 //!
-//! [`crate::scene::World`] owns one and moves it once per update (advanced, displaced, placed,
+//! [`crate::world::World`] owns one and moves it once per update (advanced, displaced, placed,
 //! foamed and checked once); the renderer draws exactly it, overlays included. Bakes and exports,
 //! which want the finite patch whatever is drawn, ask for it explicitly
-//! ([`crate::scene::World::sample_patch`]), so nothing displaces a mesh that is not drawn.
+//! ([`crate::world::World::sample_patch`]), so nothing displaces a mesh that is not drawn.
 
 use glam::{Vec2, Vec3};
 

@@ -57,7 +57,7 @@ impl SurfaceMesh {
 
     /// Displaces the mesh with `model` at time `t` (s), in place and without allocating.
     ///
-    /// Call [`WaveModel::advance`] for `t` first when the model is stateful ([`crate::scene::World`]
+    /// Call [`WaveModel::advance`] for `t` first when the model is stateful ([`crate::world::World`]
     /// does).
     pub fn displace(&mut self, model: &dyn WaveModel, t: f64) {
         model.evaluate(&self.grid, t, &mut self.positions, &mut self.normals);

@@ -18,8 +18,9 @@ use rayon::prelude::*;
 use super::sky_pass::{SkyRays, SkyRow};
 use super::FrameContext;
 use crate::raster::Framebuffer;
-use crate::scene::{Camera, WaterBody};
+use crate::scene::Camera;
 use crate::shading::{lambert, shade_water_run, Lobe, NoBottom, SurfaceVarying, UnresolvedSlopes, WaterLook, WaterRun};
+use crate::world::WaterBody;
 
 /// Rows per task: the far field is a band just under the horizon.
 const ROWS_PER_TASK: usize = 8;

@@ -27,8 +27,9 @@ use super::sky_pass::SkyRays;
 use super::terrain_pass::TerrainShader;
 use super::FrameContext;
 use crate::raster::Framebuffer;
-use crate::scene::{FarLand, Shading, TerrainBody};
+use crate::scene::Shading;
 use crate::shading::SurfaceVarying;
+use crate::world::{FarLand, TerrainBody};
 
 /// Rows per task: the fill is a band just under the horizon.
 const ROWS_PER_TASK: usize = 8;

@@ -23,8 +23,9 @@ mod terrain_pass;
 mod water_pass;
 
 use crate::raster::Framebuffer;
-use crate::scene::{Camera, WaterExtent, World};
+use crate::scene::{Camera, WaterExtent};
 use crate::shading::Environment;
+use crate::world::World;
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
 pub use mesh_view_json::{parse_camera_json, parse_light_json, MeshView, MAX_VIEW_JSON_BYTES};
@@ -48,7 +49,7 @@ pub struct Renderer {
     /// The unbounded sea's rings as this image filters them (the rings are the world's).
     sea: sea_lod::SeaLod,
     /// The sky ready to look up, rebuilt when `[sky]` changes (a Preetham sky is tabulated).
-    sky: Option<crate::scene::SkyRadiance>,
+    sky: Option<crate::shading::SkyRadiance>,
     /// The scene's lights as the sky drives them (`[sky] sun_drives_light`).
     lights: Vec<crate::scene::Light>,
     /// Where the last frame's time went.
@@ -83,7 +84,7 @@ impl Renderer {
             fb.resize(w, h);
         }
         let scene = &world.scene;
-        let sky = self.sky.get_or_insert_with(|| crate::scene::SkyRadiance::new(&scene.sky));
+        let sky = self.sky.get_or_insert_with(|| crate::shading::SkyRadiance::new(&scene.sky));
         sky.update(&scene.sky);
         scene.sky.drive_lights(&scene.lights, &mut self.lights);
         let frame = FrameContext {

@@ -18,8 +18,9 @@ use super::shaded_draw::{ShadedDraw, ShadedMesh};
 use super::terrain_pass::TerrainShader;
 use super::FrameContext;
 use crate::raster::Framebuffer;
-use crate::scene::{Shading, TerrainBody};
+use crate::scene::Shading;
 use crate::shading::ReflectionMap;
+use crate::world::TerrainBody;
 
 /// Margin (NDC units, the image being 2 wide) added around the water's screen rectangle: the
 /// water pass reads the mirror image displaced by the surface's slopes.

@@ -26,7 +26,7 @@ use crate::water::UnresolvedSlopes;
 /// The renderer's per-image state of the unbounded sea: the rings' normals with the unresolved
 /// slopes moved out of them, and those slopes per vertex, kept between frames so that steady
 /// frames do not allocate. The rings themselves are the world's
-/// ([`crate::scene::WaterBody::surface`]): only what depends on the image lives here.
+/// ([`crate::world::WaterBody::surface`]): only what depends on the image lives here.
 #[derive(Default)]
 pub struct SeaLod {
     /// The rings' normals keeping only the resolved share of their tilt.
@@ -183,7 +183,8 @@ impl<'a> FootprintFilter<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{preset, World};
+    use crate::scene::preset;
+    use crate::world::World;
 
     /// `height_at` answers on the surface as drawn: at the vertices of the rings (every level),
     /// the world's height query gives the vertex's height, for a Gerstner sea (which moves water

@@ -7,7 +7,8 @@ use rayon::prelude::*;
 
 use crate::math::{Isa, Lanes, Vec3Lanes, LANES};
 use crate::raster::Framebuffer;
-use crate::scene::{Camera, SkyRadiance, SunDisc};
+use crate::scene::Camera;
+use crate::shading::{SkyRadiance, SunDisc};
 
 /// Clears depth to the far plane (colour is left for [`draw`]).
 pub fn clear_depth(fb: &mut Framebuffer) {

@@ -7,8 +7,9 @@ use glam::{Vec3, Vec4};
 use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use super::FrameContext;
 use crate::raster::Framebuffer;
-use crate::scene::{TerrainBody, TerrainMaterial};
+use crate::scene::TerrainMaterial;
 use crate::shading::{shade_terrain, Environment, SurfaceVarying};
+use crate::world::TerrainBody;
 
 /// Land as [`shade_terrain`] lights it; it has no specular term, so the colour of a point does
 /// not depend on the eye (which lets the reflection pass reuse it).

@@ -7,11 +7,11 @@ use glam::{Vec3, Vec4};
 use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use super::FrameContext;
 use crate::raster::Framebuffer;
-use crate::scene::{TerrainBody, WaterBody};
 use crate::shading::{
     shade_water_filtered, shade_water_run, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed,
     SurfaceVarying, WaterLook,
 };
+use crate::world::{TerrainBody, WaterBody};
 
 /// Water as [`crate::shading::shade_water`] sees it, with the specular lobe of its shading
 /// model; where a point carries unresolved slope variance (the unbounded sea's mesh does,

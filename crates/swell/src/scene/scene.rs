@@ -191,7 +191,7 @@ impl Scene {
 
     /// Checks every value against its range, then the memory the whole scene would take, without
     /// building a model or allocating anything large; the error names the key path, value and
-    /// range. [`super::World::new`] then builds each model once.
+    /// range. [`crate::world::World::new`] then builds each model once.
     pub fn validate(&self) -> Result<()> {
         if self.version != SCENE_VERSION {
             return Err(Error::out_of_range(

@@ -3,7 +3,7 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::{FoamPattern, Shading, Texture, WaterPlacement};
+use super::{Shading, WaterPlacement};
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
 use crate::water::SurfaceFlow;
 
@@ -41,10 +41,11 @@ pub struct WaterMaterial {
     pub bottom_color: Vec3,
     /// Linear RGB albedo of foam, components in [0, 1]. Default [0.85, 0.88, 0.9].
     pub foam_color: Vec3,
-    /// Structure of foam: `"procedural"` (bubble rafts and their borders, [`FoamPattern`]) or an
-    /// image file path (PNG or JPEG, relative to the scene file; only the order of its grey
-    /// levels matters); absent means `"procedural"`. The wave model's foam coverage reveals it
-    /// from its highest values down, so the foam shown has the model's coverage.
+    /// Structure of foam: `"procedural"` (bubble rafts and their borders,
+    /// [`FoamPattern`](crate::shading::FoamPattern)) or an image file path (PNG or JPEG, relative
+    /// to the scene file; only the order of its grey levels matters); absent means `"procedural"`.
+    /// The wave model's foam coverage reveals it from its highest values down, so the foam shown
+    /// has the model's coverage.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub foam_texture: Option<String>,
     /// Size of one foam-pattern tile on the water, metres, in [0.1, 1000]. Default 6.
@@ -186,25 +187,6 @@ impl WaterMaterial {
             flow_velocity: turned * placement.scale,
             ..self.clone()
         }
-    }
-
-    /// Loads (or generates) the texture the material names; `None` without one.
-    pub fn load_texture(&self) -> Result<Option<Texture>> {
-        match self.texture.as_deref() {
-            None => Ok(None),
-            Some("procedural") => Ok(Some(Texture::procedural_water(self.color))),
-            Some("streaks") => Ok(Some(Texture::procedural_streaks(self.color))),
-            // A file that cannot be read is named with the key that names it.
-            Some(path) => Texture::from_file(std::path::Path::new(path))
-                .map(Some)
-                .map_err(|e| Error::invalid("water.material.texture", e.to_string())),
-        }
-    }
-
-    /// Loads (or generates) the foam pattern the material names (`foam_texture`); a file that
-    /// cannot be read is an error naming `water.material.foam_texture` and the file.
-    pub fn load_foam_pattern(&self) -> Result<FoamPattern> {
-        FoamPattern::load(self.foam_texture.as_deref().unwrap_or("procedural"), "water.material.foam_texture")
     }
 }
 

@@ -2,8 +2,9 @@
 
 use glam::Vec3;
 
+use super::{SkyRadiance, SunDisc};
 use crate::math::Vec3Lanes;
-use crate::scene::{Light, SkyRadiance, SunDisc};
+use crate::scene::Light;
 
 /// Everything that lights a surface: the lights, the ambient term and the sky (for reflections).
 #[derive(Clone, Copy, Debug)]
@@ -14,7 +15,7 @@ pub struct Environment<'a> {
     pub ambient: Vec3,
     /// The sky, ready to look up, for reflections and the haze of distance.
     pub sky: &'a SkyRadiance,
-    /// The sun disc drawn in the sky and reflected by water, if any ([`Sky::sun`]).
+    /// The sun disc drawn in the sky and reflected by water, if any ([`Sky::sun`](crate::scene::Sky::sun)).
     pub sun: Option<SunDisc>,
     /// Camera position, world metres.
     pub eye: Vec3,

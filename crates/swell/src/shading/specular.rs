@@ -77,7 +77,7 @@ mod tests {
 
     fn env_with(lights: &[Light], sky: &Sky) -> Environment<'static> {
         let lights: &'static [Light] = Box::leak(lights.to_vec().into_boxed_slice());
-        let sky: &'static crate::scene::SkyRadiance = Box::leak(Box::new(crate::scene::SkyRadiance::new(sky)));
+        let sky: &'static crate::shading::SkyRadiance = Box::leak(Box::new(crate::shading::SkyRadiance::new(sky)));
         Environment { lights, ambient: Vec3::ZERO, sky, sun: None, eye: Vec3::ZERO, time: 0.0 }
     }
 

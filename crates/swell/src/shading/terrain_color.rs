@@ -37,7 +37,7 @@ mod tests {
 
     #[test]
     fn flat_light_from_above_follows_the_face_cosine() {
-        let sky = crate::scene::SkyRadiance::new(&Sky::default());
+        let sky = crate::shading::SkyRadiance::new(&Sky::default());
         let env = Environment { lights: &[], ambient: Vec3::ZERO, sky: &sky, eye: Vec3::ZERO, sun: None, time: 0.0 };
         let m = TerrainMaterial { sand: Vec3::ONE, grass: Vec3::ONE, rock: Vec3::ONE, ..Default::default() };
         let tilted = Vec3::new(0.6, 0.8, 0.0);

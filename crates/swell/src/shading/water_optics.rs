@@ -5,9 +5,9 @@
 use glam::{Vec2, Vec3};
 
 use super::slope_variance::{mean_fresnel_lanes, spread_normals_lanes, widened_lobe_lanes};
-use super::{fresnel_dielectric, Environment, Lobe, ReflectionMap, SurfaceVarying};
+use super::{fresnel_dielectric, Environment, FoamPattern, Lobe, ReflectionMap, SurfaceVarying, Texture};
 use crate::math::{fast_pow, Isa, Lanes, Vec3Lanes};
-use crate::scene::{FoamPattern, Light, TerrainBody, Texture, WaterMaterial};
+use crate::scene::{Light, WaterMaterial};
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
 ///
@@ -557,15 +557,6 @@ fn bottom_irradiance(env: &Environment, m: &WaterMaterial, depth: f32) -> Vec3 {
     })
 }
 
-/// The scene's terrain is the bottom the water refracts to where the material sets none.
-impl Seabed for TerrainBody {
-    fn sample(&self, x: f32, z: f32) -> Option<(f32, glam::Vec3)> {
-        // The albedo uses an upward normal: under water the bands are chosen by height (sand), and
-        // the refracted view is too blurred by absorption for slope-dependent rock to matter.
-        self.ground_height(x, z).map(|y| (y, self.material.albedo(y, glam::Vec3::Y)))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -591,7 +582,7 @@ mod tests {
     }
 
     fn env<'a>(lights: &'a [Light], sky: &'a Sky) -> Environment<'a> {
-        let sky = Box::leak(Box::new(crate::scene::SkyRadiance::new(sky)));
+        let sky = Box::leak(Box::new(crate::shading::SkyRadiance::new(sky)));
         Environment { lights, ambient: Vec3::splat(0.1), sky, sun: None, eye: Vec3::new(0.0, 10.0, 0.0), time: 0.0 }
     }
 

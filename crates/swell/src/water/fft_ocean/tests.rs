@@ -537,7 +537,7 @@ mod blender {
                     damping = 0.8\nchoppiness = 1.2\nwind_velocity = 20.0\ndepth = 50.0\nspectrum = 'jonswap'\n\
                     fetch_jonswap = 80.0\nsharpen_peak_jonswap = 0.33\nseed = 4\nwave_direction_deg = 30.0\n";
         let scene = Scene::from_toml(&format!("{HEAD}{text}"), "test").unwrap();
-        let mut world = crate::scene::World::new(scene).unwrap();
+        let mut world = crate::world::World::new(scene).unwrap();
         world.update(0.7).unwrap();
         let mut r = crate::render::Renderer::new();
         let img = r.render_size(&world, 64, 36);
@@ -569,14 +569,14 @@ mod blender {
         ] {
             let text = format!("{HEAD}[water]\nmodel = 'fft'\n[water.blender]\n{key} = {value}\n");
             let e = Scene::from_toml(&text, "test")
-                .and_then(|s| crate::scene::World::new(s).map(|_| ()))
+                .and_then(|s| crate::world::World::new(s).map(|_| ()))
                 .expect_err(&format!("{key} = {value} was accepted"))
                 .to_string();
             assert!(e.contains(&format!("water.blender.{key}")), "{key} = {value}: {e}");
         }
         let text = format!("{HEAD}[water]\nmodel = 'fft'\nwind_speed = 12.0\n[water.blender]\nwind_velocity = 20.0\n");
         let e = Scene::from_toml(&text, "test")
-            .and_then(|s| crate::scene::World::new(s).map(|_| ()))
+            .and_then(|s| crate::world::World::new(s).map(|_| ()))
             .unwrap_err()
             .to_string();
         assert!(e.contains("water.wind_speed") && e.contains("water.blender.wind_velocity"), "{e}");

@@ -5,11 +5,12 @@ use glam::{Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::terrain_far_land::FarLand;
-use super::TerrainMaterial;
-use super::TerrainSpec;
 use crate::error::Result;
 use crate::math::Transform;
 use crate::mesh::SurfaceMesh;
+use crate::scene::TerrainMaterial;
+use crate::scene::TerrainSpec;
+use crate::shading::Seabed;
 use crate::terrain::HeightField;
 
 /// Terrain built from a [`TerrainSpec`]: the model-space field, its placement, the world-space mesh
@@ -152,6 +153,15 @@ impl GroundMap {
     }
 }
 
+/// The scene's terrain is the bottom the water refracts to where the material sets none.
+impl Seabed for TerrainBody {
+    fn sample(&self, x: f32, z: f32) -> Option<(f32, glam::Vec3)> {
+        // The albedo uses an upward normal: under water the bands are chosen by height (sand), and
+        // the refracted view is too blurred by absorption for slope-dependent rock to matter.
+        self.ground_height(x, z).map(|y| (y, self.material.albedo(y, glam::Vec3::Y)))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -222,7 +232,7 @@ mod tests {
         let text = "version = 1\n[camera]\neye = [0.0, 5.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\
                     [water]\nmodel = 'sines'\nsize = [6.0, 6.0]\ncells = [6, 6]\n\
                     [terrain]\ngenerator = 'flat'\nsize = 9\nextent = [4.0, 4.0]\nheight = -0.2\n";
-        let world = crate::scene::World::new(crate::scene::Scene::from_toml(text, "t").unwrap()).unwrap();
+        let world = crate::world::World::new(crate::scene::Scene::from_toml(text, "t").unwrap()).unwrap();
         assert!((world.depth_at(0.5, -1.5).unwrap() - 0.2).abs() < 1e-6);
         assert_eq!(world.depth_at(2.5, 0.0), None);
         // Water vertices at x, z in {-3, ..., 3}: inside |x|, |z| <= 2 the floor is 0.2 m down.

@@ -58,9 +58,9 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use super::{Scene, WaterPlacement, WaterSpec};
 use crate::error::{Error, Result};
 use crate::math::GridSpec;
+use crate::scene::{Scene, WaterPlacement, WaterSpec};
 use crate::water::WaveModel;
 
 /// Horizontal step (world metres) of the central differences [`Water::normals_at`] takes of the
@@ -277,7 +277,8 @@ fn world_normal(model: &dyn WaveModel, placement: &WaterPlacement, p: Vec2, t: f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{preset, World};
+    use crate::scene::preset;
+    use crate::world::World;
 
     /// A small version of preset `name`: `cells` per side (if it has water).
     fn small(name: &str, cells: u32) -> Scene {

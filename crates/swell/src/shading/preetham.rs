@@ -5,7 +5,7 @@
 //!
 //! Everything here is the paper's closed form evaluated directly, in f64 where it is built once
 //! (coefficients, zenith values); the renderer never calls it per pixel: `SkyRadiance`
-//! (`scene/sky_radiance.rs`) tabulates it once per sky.
+//! (`shading/sky_radiance.rs`) tabulates it once per sky.
 //!
 //! Angles: θ is a view direction's angle from the zenith, γ its angle from the sun, θs the sun's
 //! angle from the zenith, all radians.
@@ -13,10 +13,6 @@
 use glam::{DVec3, Vec3};
 
 use crate::math::xyy_to_linear_srgb;
-
-/// The valid turbidity range of the fitted coefficients (the paper fits T in [2, 10]; 1.7 is the
-/// clearest sky its figures show). Scenes are refused outside it.
-pub const TURBIDITY_RANGE: (f32, f32) = (1.7, 10.0);
 
 /// The five Perez coefficients A..E of one quantity (Y, x or y).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,7 +109,7 @@ pub struct PreethamSky {
 }
 
 impl PreethamSky {
-    /// The sky of turbidity `turbidity` (in [`TURBIDITY_RANGE`]) with the sun along unit
+    /// The sky of turbidity `turbidity` (in [`TURBIDITY_RANGE`](crate::scene::TURBIDITY_RANGE)) with the sun along unit
     /// `to_sun`. A sun below the horizon is evaluated at the horizon (the model has no night;
     /// the caller fades it).
     pub fn new(turbidity: f32, to_sun: Vec3) -> Self {

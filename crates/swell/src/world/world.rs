@@ -1,10 +1,11 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
-use super::{FoamPattern, Texture};
-use super::{Scene, TerrainBody, WaterExtent, WaterMaterial, WaterPlacement};
+use super::TerrainBody;
 use crate::error::Result;
 use crate::math::GridSpec;
 use crate::mesh::{Clipmap, DrawnSurface, SurfaceMesh};
+use crate::scene::{Scene, WaterExtent, WaterMaterial, WaterPlacement};
+use crate::shading::{FoamPattern, Texture};
 use crate::water::{UnresolvedSlopes, WaveModel};
 
 /// The water of a [`World`]: the model, the surface that is drawn and the material it is drawn

@@ -14,9 +14,12 @@
 //! function", SIGGRAPH): `F2 − F1`, the distance to the second-nearest minus the nearest of
 //! jittered feature points, is small along the borders between cells, which is where the foam of
 //! a bursting bubble raft stays longest. Two scales (rafts and bubbles) are summed.
+//!
+//! [`WaterMaterial::load_foam_pattern`] builds the pattern a water material names.
 
 use crate::error::{Error, Result};
 use crate::math::Lanes;
+use crate::scene::WaterMaterial;
 
 use super::Texture;
 
@@ -215,6 +218,14 @@ fn hash(mut x: u32) -> u32 {
     x ^= x >> 4;
     x = x.wrapping_mul(0x27d4_eb2d);
     x ^ (x >> 15)
+}
+
+impl WaterMaterial {
+    /// Loads (or generates) the foam pattern the material names (`foam_texture`); a file that
+    /// cannot be read is an error naming `water.material.foam_texture` and the file.
+    pub fn load_foam_pattern(&self) -> Result<FoamPattern> {
+        FoamPattern::load(self.foam_texture.as_deref().unwrap_or("procedural"), "water.material.foam_texture")
+    }
 }
 
 #[cfg(test)]

@@ -3,9 +3,9 @@
 
 use serde::Serialize;
 
-use super::{Scene, WaterModelSpec};
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
+use crate::scene::{Scene, WaterModelSpec};
 use crate::water::{FftOcean, WaveModel};
 
 /// What `swell stats` reports (JSON keys as named).
@@ -84,7 +84,7 @@ pub fn sea_stats(scene: &Scene, t: f64) -> Result<SeaStats> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::World;
+    use crate::world::World;
 
     fn scene(extra: &str) -> Scene {
         let text = format!(

@@ -1,4 +1,5 @@
-//! Colour textures: bilinear sampling with wrap-around, a procedural water pattern and image files.
+//! Colour textures: bilinear sampling with wrap-around, a procedural water pattern and image files,
+//! and the water material's texture ([`WaterMaterial::load_texture`]).
 
 use std::path::Path;
 
@@ -6,6 +7,7 @@ use glam::{Vec2, Vec3};
 
 use crate::error::{Error, Result};
 use crate::math::srgb_to_linear;
+use crate::scene::WaterMaterial;
 
 /// Largest texture side in texels, to bound memory (16384² linear RGB texels is 3 GiB).
 pub const MAX_TEXTURE_SIDE: u32 = 16384;
@@ -157,6 +159,21 @@ impl Texture {
         let top = self.texel(i, j).lerp(self.texel(i + 1, j), fu);
         let bottom = self.texel(i, j + 1).lerp(self.texel(i + 1, j + 1), fu);
         top.lerp(bottom, fv)
+    }
+}
+
+impl WaterMaterial {
+    /// Loads (or generates) the texture the material names; `None` without one.
+    pub fn load_texture(&self) -> Result<Option<Texture>> {
+        match self.texture.as_deref() {
+            None => Ok(None),
+            Some("procedural") => Ok(Some(Texture::procedural_water(self.color))),
+            Some("streaks") => Ok(Some(Texture::procedural_streaks(self.color))),
+            // A file that cannot be read is named with the key that names it.
+            Some(path) => Texture::from_file(std::path::Path::new(path))
+                .map(Some)
+                .map_err(|e| Error::invalid("water.material.texture", e.to_string())),
+        }
     }
 }
 

@@ -14,7 +14,7 @@ use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
 use super::preetham::PreethamSky;
-use super::{Sky, SkyModel};
+use crate::scene::{Sky, SkyModel};
 
 /// Cells per side of the Preetham table (128² entries, 192 KiB, about 2 ms to build on one core).
 pub const TABLE_SIDE: usize = 128;
