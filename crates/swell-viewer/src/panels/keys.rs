@@ -302,49 +302,28 @@ pub(crate) mod format {
         }
     }
 
-    impl ser::SerializeSeq for Items<'_> {
-        type Ok = ();
-        type Error = WalkError;
-        fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), WalkError> {
-            self.item(v)
-        }
-        fn end(self) -> Result<(), WalkError> {
-            self.finish()
-        }
+    /// Sequences, tuples and tuple structs and variants are one list of items to the walk: the
+    /// four serde traits differ only in their method's name.
+    macro_rules! items_as {
+        ($($tr:ident :: $method:ident),+ $(,)?) => {$(
+            impl ser::$tr for Items<'_> {
+                type Ok = ();
+                type Error = WalkError;
+                fn $method<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), WalkError> {
+                    self.item(v)
+                }
+                fn end(self) -> Result<(), WalkError> {
+                    self.finish()
+                }
+            }
+        )+};
     }
-
-    impl ser::SerializeTuple for Items<'_> {
-        type Ok = ();
-        type Error = WalkError;
-        fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), WalkError> {
-            self.item(v)
-        }
-        fn end(self) -> Result<(), WalkError> {
-            self.finish()
-        }
-    }
-
-    impl ser::SerializeTupleStruct for Items<'_> {
-        type Ok = ();
-        type Error = WalkError;
-        fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), WalkError> {
-            self.item(v)
-        }
-        fn end(self) -> Result<(), WalkError> {
-            self.finish()
-        }
-    }
-
-    impl ser::SerializeTupleVariant for Items<'_> {
-        type Ok = ();
-        type Error = WalkError;
-        fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), WalkError> {
-            self.item(v)
-        }
-        fn end(self) -> Result<(), WalkError> {
-            self.finish()
-        }
-    }
+    items_as!(
+        SerializeSeq::serialize_element,
+        SerializeTuple::serialize_element,
+        SerializeTupleStruct::serialize_field,
+        SerializeTupleVariant::serialize_field,
+    );
 
     /// A table: each field (or map entry) is a key under `path`; a field serde skips is recorded
     /// as left out.
