@@ -217,10 +217,33 @@ pub fn shade_water_lanes(
     let n = points.normal.dot(to_eye).lt(0.0).select3(-points.normal, points.normal);
     let cos_i = n.dot(to_eye);
     let unresolved = points.unresolved.max(0.0);
-    // Each Fresnel only where some lane needs it: near water has no unresolved slopes, far water
-    // little else.
+    let f = fresnel_over_slopes_lanes(m, cos_i, unresolved);
+    let sky = reflected_lanes(env, look, p, n, to_eye, cos_i, unresolved, live);
+    let transmitted = transmitted_lanes(env, look, p, n, to_eye, live);
+
+    let mut water = sky.scale(f) + transmitted.scale(1.0 - f);
+    if m.specular > 0.0 {
+        let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
+        water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular);
+    }
+    let foam = points.foam;
+    if foam.gt(0.0).any() {
+        let foam_light = lambert_lanes(env, p, Vec3Lanes::splat(Vec3::Y)) * m.foam_color;
+        let cover = foam_cover_lanes(env, look, p, foam.min(1.0));
+        water = foam.gt(0.0).select3(water.lerp(foam_light, cover), water);
+    }
+    // Aerial perspective: distant water fades into the horizon's haze (unchanged without haze).
+    // Lanes past `live` are computed and dropped by the caller.
+    env.sky.aerial_perspective_lanes(env.eye, p, water)
+}
+
+/// The Fresnel reflectance of the water at `cos_i` to the mean normal: exact where the surface is
+/// point-sampled, Bruneton's mean over the `unresolved` slopes elsewhere. Each only where some
+/// lane needs it: near water has no unresolved slopes, far water little else.
+#[inline(always)]
+fn fresnel_over_slopes_lanes(m: &WaterMaterial, cos_i: Lanes, unresolved: Lanes) -> Lanes {
     let rough = unresolved.gt(0.0);
-    let f = if !rough.any() {
+    if !rough.any() {
         fresnel_dielectric_lanes(cos_i, m.refractive_index)
     } else if !unresolved.le(0.0).any() {
         mean_fresnel_lanes(cos_i, unresolved, fresnel_dielectric(1.0, m.refractive_index))
@@ -229,11 +252,24 @@ pub fn shade_water_lanes(
             mean_fresnel_lanes(cos_i, unresolved, fresnel_dielectric(1.0, m.refractive_index)),
             fresnel_dielectric_lanes(cos_i, m.refractive_index),
         )
-    };
+    }
+}
 
-    // The sky the slopes' spread of normals reflects, averaged over two normals tilted by the
-    // slopes' deviation towards and away from the eye (one normal, twice, when nothing is
-    // unresolved).
+/// What the water reflects towards the eye: the sky (and sun) averaged over two normals tilted
+/// by the slopes' deviation towards and away from the eye (one normal, twice, when nothing is
+/// unresolved), replaced by the mirrored terrain where the reflected ray meets it.
+#[allow(clippy::too_many_arguments)] // the lanes of one batch, passed apart so each stays a register set
+#[inline(always)]
+fn reflected_lanes(
+    env: &Environment,
+    look: &WaterLook,
+    p: Vec3Lanes,
+    n: Vec3Lanes,
+    to_eye: Vec3Lanes,
+    cos_i: Lanes,
+    unresolved: Lanes,
+    live: usize,
+) -> Vec3Lanes {
     let mut sky = Vec3Lanes::splat(Vec3::ZERO);
     for s in spread_normals_lanes(n, to_eye, unresolved, live) {
         let c = s.dot(to_eye).max(0.0);
@@ -254,7 +290,22 @@ pub fn shade_water_lanes(
             }
         }
     }
+    sky
+}
 
+/// The light that leaves the water body towards the eye: the lit body colour (or its texture),
+/// where a seabed is in reach the bottom seen through the water with Beer-Lambert absorption, and
+/// the backlit crests' scattering.
+#[inline(always)]
+fn transmitted_lanes(
+    env: &Environment,
+    look: &WaterLook,
+    p: Vec3Lanes,
+    n: Vec3Lanes,
+    to_eye: Vec3Lanes,
+    live: usize,
+) -> Vec3Lanes {
+    let m = look.material;
     let (lit, scatter) = light_in_water_lanes(env, m, p, n, to_eye);
     let body = match look.texture {
         Some(_) => Vec3Lanes::from_fn(|i| look.body_color(p.x.0[i], p.z.0[i])) * lit,
@@ -282,21 +333,7 @@ pub fn shade_water_lanes(
     if m.scatter_strength > 0.0 {
         transmitted = transmitted + scatter;
     }
-
-    let mut water = sky.scale(f) + transmitted.scale(1.0 - f);
-    if m.specular > 0.0 {
-        let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
-        water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular);
-    }
-    let foam = points.foam;
-    if foam.gt(0.0).any() {
-        let foam_light = lambert_lanes(env, p, Vec3Lanes::splat(Vec3::Y)) * m.foam_color;
-        let cover = foam_cover_lanes(env, look, p, foam.min(1.0));
-        water = foam.gt(0.0).select3(water.lerp(foam_light, cover), water);
-    }
-    // Aerial perspective: distant water fades into the horizon's haze (unchanged without haze).
-    // Lanes past `live` are computed and dropped by the caller.
-    env.sky.aerial_perspective_lanes(env.eye, p, water)
+    transmitted
 }
 
 /// A run of water points to shade together ([`shade_water_run`]): point `i` of `len`, with its
