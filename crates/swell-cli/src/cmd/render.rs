@@ -13,7 +13,7 @@ use swell::export::{
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
 use swell::scene::Shading;
-use swell::scene::{Camera, MAX_IMAGE_SIDE};
+use swell::scene::{Camera, Scene, MAX_IMAGE_SIDE};
 use swell::world::World;
 use swell::{Error, Result};
 
@@ -43,17 +43,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
     if a.obj.is_some() {
         return run_mesh(&a);
     }
-    // The comparison mode's own flags act only with --obj: refused, not ignored.
-    for (flag, given) in
-        [("--camera", a.camera.is_some()), ("--light", a.light.is_some()), ("--repeat", a.repeat.is_some())]
-    {
-        if given {
-            return Err(Error::invalid(
-                flag,
-                "belongs to the --obj comparison mode; a scene has its own [camera] and [[light]]",
-            ));
-        }
-    }
+    refuse_mesh_flags(&a)?;
     let output = resolve_output(&a)?;
     let time = a.time.unwrap_or(0.0);
     swell::limits::check_time("--time", time)?;
@@ -63,28 +53,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
         Some(frames) => time + f64::from(frames.last) / a.fps,
     };
     swell::limits::check_time("--time + last frame / --fps", last_time)?;
-    let mut scene = load_scene(&a.source)?;
-    super::check_steps(&scene, "--time", last_time)?;
-    if let Some(size) = &a.size {
-        let (w, h) = parse_size(size)?;
-        scene.render.width = w;
-        scene.render.height = h;
-    }
-    if let Some(name) = &a.shading {
-        let shading = Shading::parse("--shading", name)?;
-        if let Some(w) = &mut scene.water {
-            w.material.shading = shading;
-        }
-    }
-    scene.render.wireframe |= a.wireframe;
-    scene.render.normals |= a.normals;
-    if let Some(n) = a.supersample {
-        scene.render.supersample = n;
-        scene.render.validate("render").map_err(|e| match e {
-            Error::OutOfRange { value, range, .. } => Error::OutOfRange { key: "--supersample".into(), value, range },
-            other => other,
-        })?;
-    }
+    let scene = scene_with_flags(&a, last_time)?;
     let threads = a.threads.unwrap_or(scene.render.threads);
     let pool = thread_pool(threads)?;
     let (width, height) = (scene.render.width, scene.render.height);
@@ -190,6 +159,50 @@ pub fn run(a: RenderArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Refuses the comparison mode's own flags without `--obj`: they would be ignored otherwise.
+fn refuse_mesh_flags(a: &RenderArgs) -> Result<()> {
+    for (flag, given) in
+        [("--camera", a.camera.is_some()), ("--light", a.light.is_some()), ("--repeat", a.repeat.is_some())]
+    {
+        if given {
+            return Err(Error::invalid(
+                flag,
+                "belongs to the --obj comparison mode; a scene has its own [camera] and [[light]]",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The scene of `--scene`/`--preset` with the flags that override its keys (`--size`,
+/// `--shading`, `--wireframe`, `--normals`, `--supersample`) applied and checked, after checking
+/// that a time-stepped model can reach `last_time` (s).
+fn scene_with_flags(a: &RenderArgs, last_time: f64) -> Result<Scene> {
+    let mut scene = load_scene(&a.source)?;
+    super::check_steps(&scene, "--time", last_time)?;
+    if let Some(size) = &a.size {
+        let (w, h) = parse_size(size)?;
+        scene.render.width = w;
+        scene.render.height = h;
+    }
+    if let Some(name) = &a.shading {
+        let shading = Shading::parse("--shading", name)?;
+        if let Some(w) = &mut scene.water {
+            w.material.shading = shading;
+        }
+    }
+    scene.render.wireframe |= a.wireframe;
+    scene.render.normals |= a.normals;
+    if let Some(n) = a.supersample {
+        scene.render.supersample = n;
+        scene.render.validate("render").map_err(|e| match e {
+            Error::OutOfRange { value, range, .. } => Error::OutOfRange { key: "--supersample".into(), value, range },
+            other => other,
+        })?;
+    }
+    Ok(scene)
 }
 
 /// Decides PNG, GIF or PNG sequence from the extension and a `%` pattern, and checks everything
