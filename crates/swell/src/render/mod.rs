@@ -24,12 +24,15 @@ mod water_pass;
 
 use crate::raster::Framebuffer;
 use crate::scene::{Camera, WaterExtent};
-use crate::shading::Environment;
-use crate::world::World;
+use crate::shading::{Environment, ReflectionMap};
+use crate::world::{TerrainBody, WaterBody, World};
 
 pub use mesh_pass::{MeshLight, MeshRenderer};
 pub use mesh_view_json::{parse_camera_json, parse_light_json, MeshView, MAX_VIEW_JSON_BYTES};
 pub use render_stages::RenderStages;
+
+use render_stages::Stopwatch;
+use shaded_draw::ShadedDraw;
 
 /// Renders [`World`]s, keeping its buffers from frame to frame so steady-state frames do not
 /// allocate.
@@ -101,71 +104,22 @@ impl Renderer {
             size: (w, h),
         };
         let mut stages = RenderStages::default();
-        let mut clock = std::time::Instant::now();
-        // Adds the time since the last mark to a stage.
-        let mut mark = |stage: &mut std::time::Duration| {
-            let now = std::time::Instant::now();
-            *stage += now - clock;
-            clock = now;
-        };
+        let mut watch = Stopwatch::start();
         sky_pass::clear_depth(fb);
-        mark(&mut stages.sky);
+        watch.lap(&mut stages.sky);
         let mut reflection = None;
         if let Some(terrain) = &world.terrain {
-            terrain_pass::draw(fb, &frame, terrain, &mut self.terrain_draw);
-            let sea = world.water.as_ref().is_some_and(|w| w.extent == WaterExtent::Unbounded);
-            far_land_pass::draw(fb, &frame, terrain, &mut self.far_land_draw, sea);
-            if let Some(water) = &world.water {
-                let water_box = (!sea)
-                    .then(|| reflection_pass::water_screen_box(water.surface.positions(), frame.clip_from_world))
-                    .flatten();
-                let draw = &mut self.terrain_draw;
-                reflection = reflection_pass::draw(&mut self.reflection_scratch, &frame, terrain, draw, water_box);
-            }
-            mark(&mut stages.terrain);
+            let draws = (&mut self.terrain_draw, &mut self.far_land_draw, &mut self.reflection_scratch);
+            reflection = draw_terrain(fb, &frame, world, terrain, draws);
+            watch.lap(&mut stages.terrain);
         }
         if let Some(water) = &world.water {
-            let surface = &water.surface;
-            let mesh = match surface.rings() {
-                // Only what depends on the image is done here: the footprint filter.
-                Some(rings) => {
-                    let sea = self.sea.filter(rings, &water.slopes, water.placement.scale, &scene.camera, h);
-                    mark(&mut stages.sea_filter);
-                    shaded_draw::ShadedMesh {
-                        positions: &rings.positions,
-                        normals: sea.normals,
-                        foam: surface.foam(),
-                        unresolved: Some(sea.unresolved),
-                        indices: &rings.indices,
-                    }
-                }
-                None => shaded_draw::ShadedMesh {
-                    positions: surface.positions(),
-                    normals: surface.normals(),
-                    foam: surface.foam(),
-                    unresolved: None,
-                    indices: surface.indices(),
-                },
-            };
-            water_pass::draw(
-                fb,
-                &frame,
-                water,
-                mesh,
-                &mut self.water_draw,
-                world.terrain.as_ref(),
-                reflection.as_ref(),
-            );
-            mark(&mut stages.water);
-            if water.extent == WaterExtent::Unbounded {
-                let lobe = crate::shading::Lobe::of(water.material.shading);
-                far_field_pass::draw(fb, &frame, &scene.camera, water, &water.slopes, lobe);
-                mark(&mut stages.far_field);
-            }
+            let buffers = (&mut self.sea, &mut self.water_draw);
+            draw_water(fb, &frame, world, water, buffers, reflection.as_ref(), (&mut stages, &mut watch));
         }
         // After every geometry pass: the sky fills only what they left at the far plane.
         sky_pass::draw(fb, &scene.camera, frame.env.sky, frame.env.sun.as_ref());
-        mark(&mut stages.sky);
+        watch.lap(&mut stages.sky);
         if let Some(water) = &world.water {
             let scale = water.placement.scale;
             overlay_pass::draw(fb, &frame, &water.surface, scale, scene.render.wireframe, scene.render.normals);
@@ -175,9 +129,70 @@ impl Renderer {
             let out = self.framebuffer.get_or_insert_with(|| Framebuffer::new(width, height));
             out.downsample_from(hi, ss);
         }
-        mark(&mut stages.finish);
+        watch.lap(&mut stages.finish);
         self.stages = stages;
         self.framebuffer.as_ref().expect("rendered above")
+    }
+}
+
+/// Draws `terrain`, the land beyond it and, for a finite water patch in the scene, the terrain's
+/// mirror image, which it returns for the water to reflect.
+fn draw_terrain<'a>(
+    fb: &mut Framebuffer,
+    frame: &FrameContext,
+    world: &World,
+    terrain: &TerrainBody,
+    (terrain_draw, far_land_draw, scratch): (&mut ShadedDraw, &mut ShadedDraw, &'a mut reflection_pass::Scratch),
+) -> Option<ReflectionMap<'a>> {
+    terrain_pass::draw(fb, frame, terrain, terrain_draw);
+    let sea = world.water.as_ref().is_some_and(|w| w.extent == WaterExtent::Unbounded);
+    far_land_pass::draw(fb, frame, terrain, far_land_draw, sea);
+    let water = world.water.as_ref()?;
+    let water_box =
+        (!sea).then(|| reflection_pass::water_screen_box(water.surface.positions(), frame.clip_from_world)).flatten();
+    reflection_pass::draw(scratch, frame, terrain, terrain_draw, water_box)
+}
+
+/// Draws `water` as the world holds it (the patch, or the rings with the footprint filter of this
+/// image, then the far field to the horizon), timing each stage.
+fn draw_water(
+    fb: &mut Framebuffer,
+    frame: &FrameContext,
+    world: &World,
+    water: &WaterBody,
+    (sea_lod, water_draw): (&mut sea_lod::SeaLod, &mut ShadedDraw),
+    reflection: Option<&ReflectionMap>,
+    (stages, watch): (&mut RenderStages, &mut Stopwatch),
+) {
+    let surface = &water.surface;
+    let mesh = match surface.rings() {
+        // Only what depends on the image is done here: the footprint filter.
+        Some(rings) => {
+            let rows = frame.size.1;
+            let sea = sea_lod.filter(rings, &water.slopes, water.placement.scale, frame.camera, rows);
+            watch.lap(&mut stages.sea_filter);
+            shaded_draw::ShadedMesh {
+                positions: &rings.positions,
+                normals: sea.normals,
+                foam: surface.foam(),
+                unresolved: Some(sea.unresolved),
+                indices: &rings.indices,
+            }
+        }
+        None => shaded_draw::ShadedMesh {
+            positions: surface.positions(),
+            normals: surface.normals(),
+            foam: surface.foam(),
+            unresolved: None,
+            indices: surface.indices(),
+        },
+    };
+    water_pass::draw(fb, frame, water, mesh, water_draw, world.terrain.as_ref(), reflection);
+    watch.lap(&mut stages.water);
+    if water.extent == WaterExtent::Unbounded {
+        let lobe = crate::shading::Lobe::of(water.material.shading);
+        far_field_pass::draw(fb, frame, frame.camera, water, &water.slopes, lobe);
+        watch.lap(&mut stages.far_field);
     }
 }
 

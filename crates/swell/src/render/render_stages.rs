@@ -1,7 +1,7 @@
 //! Where a frame's rendering time goes, pass by pass: what `swell bench realtime` reports beside
 //! the frame rate (issue 33: the per-stage split) and what a profiler of one preset starts from.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Wall time of each pass of the last [`super::Renderer::render_size`]. The water pass rasterizes
 /// and shades in one deferred walk per band, so its raster and shading are one figure here (the
@@ -26,5 +26,23 @@ impl RenderStages {
     /// The sum of the stages.
     pub fn total(&self) -> Duration {
         self.terrain + self.sea_filter + self.water + self.far_field + self.sky + self.finish
+    }
+}
+
+/// Times consecutive stages: each [`Stopwatch::lap`] adds the time since the previous one (or since
+/// the start) to a stage.
+pub(crate) struct Stopwatch(Instant);
+
+impl Stopwatch {
+    /// Starts timing now.
+    pub(crate) fn start() -> Self {
+        Self(Instant::now())
+    }
+
+    /// Adds the time since the last lap to `stage`.
+    pub(crate) fn lap(&mut self, stage: &mut Duration) {
+        let now = Instant::now();
+        *stage += now - self.0;
+        self.0 = now;
     }
 }
