@@ -62,10 +62,11 @@ pub struct SceneSource {
 pub struct RenderArgs {
     #[command(flatten)]
     pub source: SceneSource,
-    /// Output file: `.png` for one frame; with --frames, `.gif` for an animation or a PNG
-    /// sequence pattern such as `frames/sea_%04d.png` (one file per frame, `%04d` replaced by the
-    /// frame number zero-padded to 4 digits; `%d` unpadded, `%0Nd` for N in [1, 9], `%%` a
-    /// literal %; the directory must exist).
+    /// Output file: `.png` for one frame, or `.exr` for one frame's linear scene radiance (float
+    /// RGB, the pixels before exposure and the sRGB curve, for compositing and measuring); with
+    /// --frames, `.gif` for an animation or a PNG sequence pattern such as `frames/sea_%04d.png`
+    /// (one file per frame, `%04d` replaced by the frame number zero-padded to 4 digits; `%d`
+    /// unpadded, `%0Nd` for N in [1, 9], `%%` a literal %; the directory must exist).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Simulation time of the frame (of frame 0 of an animation), in seconds, in [-1e7, 1e7].

@@ -9,7 +9,7 @@ use glam::{Vec2, Vec3};
 use swell::Water;
 
 mod common;
-use common::read_exr_y;
+use common::{read_exr_rgb, read_exr_y};
 
 const SWELL: &str = env!("CARGO_BIN_EXE_swell");
 
@@ -24,16 +24,6 @@ fn ocean_text() -> String {
     let text = include_str!("../../swell/presets/ocean.toml").replace("cells = [400, 400]", "cells = [48, 48]");
     assert!(text.contains("cells = [48, 48]"));
     text.replace("width = 1280\nheight = 720", "width = 160\nheight = 90")
-}
-
-fn read_exr_rgb(path: &Path) -> Vec<Vec3> {
-    let img = exr::prelude::read_first_rgba_layer_from_file(
-        path,
-        |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),
-        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b),
-    )
-    .unwrap();
-    img.layer_data.channel_data.pixels.1
 }
 
 #[test]

@@ -44,7 +44,7 @@ pub fn run(a: BakeArgs) -> Result<()> {
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let mut world = World::new(scene)?;
-        super::advance_with_progress(&mut world, f64::from(settings.frames.first) / settings.fps)?;
+        super::advance_with_progress(&mut world, f64::from(settings.frames.first) / settings.fps, World::advance)?;
         settings.loop_period_s = model_loop_period(&world);
         let bake = Bake::prepare(&mut world, &a.out, settings)?;
         let todo = bake.frames_to_bake().len();

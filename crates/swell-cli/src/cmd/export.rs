@@ -37,7 +37,11 @@ pub fn run(a: ExportArgs) -> Result<()> {
     let pool = thread_pool(a.threads)?;
     pool.install(|| {
         let mut world = World::new(scene)?;
-        super::advance_with_progress(&mut world, frames.map_or(a.time, |r| f64::from(r.first) / a.fps))?;
+        super::advance_with_progress(
+            &mut world,
+            frames.map_or(a.time, |r| f64::from(r.first) / a.fps),
+            World::advance,
+        )?;
         let mut patch = world.new_patch_mesh();
         let mut write = |path: &Path, t: f64| -> Result<()> {
             // Exports write the water's finite patch, whatever the scene draws: the models are

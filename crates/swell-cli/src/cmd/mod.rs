@@ -80,11 +80,16 @@ pub fn check_steps(scene: &Scene, key: &str, t: f64) -> Result<()> {
     ))
 }
 
+/// How a command moves its world to a time: [`World::update`] or [`World::advance`].
+pub type Step = fn(&mut World, f64) -> Result<()>;
+
 /// Moves `world` to time `t` (s); when its time-stepped model has many steps to take, in a
 /// hundred slices with a progress bar and an estimate on stderr, stoppable by SIGINT/SIGTERM
 /// between slices. Slicing does not change the result: the model steps at its fixed time step
-/// whatever the slices.
-pub fn advance_with_progress(world: &mut World, t: f64) -> Result<()> {
+/// whatever the slices. `step` is [`World::update`] for commands that draw the water and
+/// [`World::advance`] for those that only sample its patch (export, bake): displacing a drawn
+/// surface nobody draws would be wasted work.
+pub fn advance_with_progress(world: &mut World, t: f64, step: Step) -> Result<()> {
     let steps = |t: f64| world.scene.water.as_ref().and_then(|w| w.model.steps_to(t));
     let from = if world.time().is_finite() { world.time() } else { 0.0 };
     let todo = match (steps(t), steps(from)) {
@@ -93,7 +98,7 @@ pub fn advance_with_progress(world: &mut World, t: f64) -> Result<()> {
         _ => 0.0,
     };
     if todo < PROGRESS_STEPS {
-        return world.update(t);
+        return step(world, t);
     }
     let from = if t >= from { from } else { 0.0 };
     eprintln!(
@@ -112,7 +117,7 @@ pub fn advance_with_progress(world: &mut World, t: f64) -> Result<()> {
     for i in 1..=100 {
         interrupt.check(format_args!("stopped at {i}% of the steps to t = {} s; nothing was written", Human(t)))?;
         let ti = if i == 100 { t } else { from + (t - from) * f64::from(i) / 100.0 };
-        world.update(ti)?;
+        step(world, ti)?;
         bar.inc(1);
     }
     bar.finish_and_clear();

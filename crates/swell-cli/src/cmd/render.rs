@@ -1,5 +1,5 @@
-//! `swell render`: one frame to PNG, or `--frames N` to an animated GIF or a PNG sequence
-//! (`--out 'frames/sea_%04d.png'`); or, with `--obj`, one mesh seen by one camera, for comparison
+//! `swell render`: one frame to PNG (or to EXR, its linear radiance), or `--frames N` to an
+//! animated GIF or a PNG sequence (`--out 'frames/sea_%04d.png'`); or, with `--obj`, one mesh seen by one camera, for comparison
 //! with an OpenGL renderer.
 
 use std::cell::Cell;
@@ -8,7 +8,8 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use swell::export::{
-    pending_frames, write_gif, write_png, write_png_sequence, FramePattern, FrameRange, MAX_FPS, MAX_GIF_FPS,
+    pending_frames, write_exr_rgb, write_gif, write_png, write_png_sequence, ExrCompression, FramePattern, FrameRange,
+    MAX_FPS, MAX_GIF_FPS,
 };
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
@@ -25,14 +26,21 @@ use swell::limits::MAX_FRAMES;
 
 enum Output {
     Png,
-    Gif { frames: FrameRange },
-    PngSequence { frames: FrameRange, pattern: FramePattern },
+    /// One frame's linear scene radiance: the framebuffer before exposure and the sRGB curve.
+    Exr,
+    Gif {
+        frames: FrameRange,
+    },
+    PngSequence {
+        frames: FrameRange,
+        pattern: FramePattern,
+    },
 }
 
 impl Output {
     fn frames(&self) -> Option<FrameRange> {
         match self {
-            Output::Png => None,
+            Output::Png | Output::Exr => None,
             Output::Gif { frames } | Output::PngSequence { frames, .. } => Some(*frames),
         }
     }
@@ -60,6 +68,11 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let (exposure, gamma) = (scene.render.exposure, scene.render.gamma);
     let mut world = World::new(scene)?;
     let mut renderer = Renderer::new();
+    if let Output::Exr = output {
+        pool.install(|| write_radiance(&a.out, &mut world, &mut renderer, time))?;
+        eprintln!("wrote {}", a.out.display());
+        return Ok(());
+    }
     // Time spent rendering frames (simulation, rendering, sRGB encoding; not the advance to the
     // first frame), for --verbose: the writers call `render` between their batches of encoding,
     // never during them, so this is the time the frames alone take.
@@ -85,15 +98,16 @@ pub fn run(a: RenderArgs) -> Result<()> {
     };
     let mut wrote = a.out.display().to_string();
     pool.install(|| match &output {
+        Output::Exr => unreachable!("written above"),
         Output::Png => {
-            super::advance_with_progress(&mut world, time)?;
+            super::advance_with_progress(&mut world, time, World::update)?;
             let mut rgba = Vec::new();
             render_frame(&mut world, time, &mut rgba)?;
             write_png(&a.out, width, height, &rgba)
         }
         Output::Gif { frames } => {
             let bar = bar(frames.len() as usize, &wrote);
-            super::advance_with_progress(&mut world, frame_time(frames.first))?;
+            super::advance_with_progress(&mut world, frame_time(frames.first), World::update)?;
             // issue 10: SIGINT/SIGTERM abandon the animation between frames; the GIF is written
             // atomically, so nothing is left under its name.
             let interrupt = crate::interrupt::Interrupt::install()?;
@@ -121,7 +135,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
             }
             let Some(&first) = todo.first() else { return Ok(()) };
             let bar = bar(todo.len(), &a.out.display().to_string());
-            super::advance_with_progress(&mut world, frame_time(first))?;
+            super::advance_with_progress(&mut world, frame_time(first), World::update)?;
             // Each frame is its own atomic file: an interrupted sequence keeps its whole frames, and
             // --resume continues from them.
             let interrupt = crate::interrupt::Interrupt::install()?;
@@ -159,6 +173,16 @@ pub fn run(a: RenderArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// `--out FRAME.exr`: the frame at `time` (s) as linear scene radiance, float RGB in the
+/// renderer's units, top row first; the PNG of the same frame is these pixels through
+/// [`swell::raster::Framebuffer::encode_rgba8`] (exposure, then the sRGB curve). ZIP-compressed
+/// (lossless; a sky compresses well). Identical bytes for any thread count, like the PNG.
+fn write_radiance(out: &Path, world: &mut World, renderer: &mut Renderer, time: f64) -> Result<()> {
+    super::advance_with_progress(world, time, World::update)?;
+    let fb = renderer.render(world);
+    write_exr_rgb(out, fb.width() as usize, fb.height() as usize, &fb.color, ExrCompression::Zip)
 }
 
 /// Refuses the comparison mode's own flags without `--obj`: they would be ignored otherwise.
@@ -260,12 +284,23 @@ fn resolve_output(a: &RenderArgs) -> Result<Output> {
         (Some("gif"), None) => {
             return Err(Error::invalid("--frames", "a .gif output needs --frames N (frames 0 to N-1) or A..B"))
         }
+        (Some("exr"), None) => Output::Exr,
+        (Some("exr"), Some(_)) => {
+            return Err(Error::invalid(
+                "--out",
+                format!(
+                    "{} is one frame's linear radiance; --frames writes an animation (.gif) or a PNG sequence \
+                     (frames/sea_%04d.png): render one .exr per --time instead",
+                    a.out.display()
+                ),
+            ))
+        }
         _ => {
             return Err(Error::invalid(
                 "--out",
                 format!(
                     "{} must end in .png (one frame, or with --frames a sequence pattern such as \
-                     frames/sea_%04d.png) or .gif (an animation)",
+                     frames/sea_%04d.png), .exr (one frame's linear radiance) or .gif (an animation)",
                     a.out.display()
                 ),
             ))

@@ -48,3 +48,15 @@ pub fn read_exr_y(path: &Path) -> Vec<f32> {
         .unwrap();
     img.layer_data.channel_data.pixels.1
 }
+
+/// The RGB float EXR at `path` (a normal or displacement map, a rendered frame's radiance),
+/// row-major, first row first.
+pub fn read_exr_rgb(path: &Path) -> Vec<glam::Vec3> {
+    let img = exr::prelude::read_first_rgba_layer_from_file(
+        path,
+        |res, _| (res.width(), vec![glam::Vec3::ZERO; res.width() * res.height()]),
+        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = glam::Vec3::new(r, g, b),
+    )
+    .unwrap();
+    img.layer_data.channel_data.pixels.1
+}
