@@ -2,7 +2,6 @@
 //! gives the numbers the CLI writes: `swell bake`'s displacement, normal and foam maps, `swell
 //! export`'s mesh, `swell render`'s pixels and `swell stats`'s JSON, for the same scene and time.
 
-use std::path::Path;
 use std::process::Command;
 
 use glam::{Vec2, Vec3};
