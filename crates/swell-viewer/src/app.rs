@@ -22,8 +22,11 @@ use crate::panels::files::{FileMessage, FileRequest};
 use crate::panels::{self, PanelOutput, PanelState};
 use crate::ViewerOptions;
 
-/// Width of the parameter panel, points.
-pub const PANEL_WIDTH: f32 = 430.0;
+/// Width of the parameter panel, points: wide enough for its widest row (a label and three
+/// values, e.g. the water's absorption). A narrower panel let that row spill past the window's
+/// right edge, and egui then laid the panel out that much further right, so the view grew under it
+/// (1344 px for 1280 asked) and the panel's labels were hidden behind the view.
+pub const PANEL_WIDTH: f32 = 500.0;
 
 /// Height of the status line, points.
 pub const STATUS_HEIGHT: f32 = 24.0;
