@@ -184,23 +184,7 @@ pub fn optional_number(
     speed: f64,
     suffix: &str,
 ) -> bool {
-    ui.label(label);
-    let changed = ui
-        .horizontal(|ui| {
-            let mut on = value.is_some();
-            let mut changed = false;
-            if ui.checkbox(&mut on, "").changed() {
-                *value = on.then_some(default);
-                changed = true;
-            }
-            if let Some(v) = value {
-                changed |= ui.add(DragValue::new(v).speed(speed).suffix(suffix).max_decimals(4)).changed();
-            }
-            changed
-        })
-        .inner;
-    ui.end_row();
-    changed
+    toggled_number(ui, label, value, default, speed, suffix, None)
 }
 
 /// A labelled optional number whose absence means "automatic" (`water.lod.spacing`): an *auto*
@@ -214,21 +198,37 @@ pub fn auto_number(
     speed: f64,
     suffix: &str,
 ) -> bool {
+    toggled_number(ui, label, value, auto_value, speed, suffix, Some("auto"))
+}
+
+/// The row both of the above are: a check box and, when `value` is set, its number (set to
+/// `start` when the box turns it on). With `auto` the box is labelled so and checked while the
+/// value is `None`, which shows `start` greyed; without, the box is checked while it is set.
+fn toggled_number(
+    ui: &mut Ui,
+    label: &str,
+    value: &mut Option<f32>,
+    start: f32,
+    speed: f64,
+    suffix: &str,
+    auto: Option<&str>,
+) -> bool {
     ui.label(label);
     let changed = ui
         .horizontal(|ui| {
-            let mut auto = value.is_none();
+            let mut checked = value.is_some() != auto.is_some();
             let mut changed = false;
-            if ui.checkbox(&mut auto, "auto").changed() {
-                *value = (!auto).then_some(auto_value);
+            if ui.checkbox(&mut checked, auto.unwrap_or("")).changed() {
+                *value = (checked != auto.is_some()).then_some(start);
                 changed = true;
             }
             match value {
                 Some(v) => changed |= ui.add(DragValue::new(v).speed(speed).suffix(suffix).max_decimals(4)).changed(),
-                None => {
-                    // Four decimals, as the number shows once it is set.
-                    ui.weak(format!("{}{suffix}", (auto_value * 1e4).round() / 1e4));
+                // Four decimals, as the number shows once it is set.
+                None if auto.is_some() => {
+                    ui.weak(format!("{}{suffix}", (start * 1e4).round() / 1e4));
                 }
+                None => {}
             }
             changed
         })
