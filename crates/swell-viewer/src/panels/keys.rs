@@ -340,36 +340,29 @@ pub(crate) mod format {
         }
     }
 
-    impl ser::SerializeStruct for Fields<'_> {
-        type Ok = ();
-        type Error = WalkError;
-        fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> Result<(), WalkError> {
-            self.field(key, v)
-        }
-        fn skip_field(&mut self, key: &'static str) -> Result<(), WalkError> {
-            // `skip_serializing_if` said the value is its default: the file leaves it out.
-            self.out.left_out.insert(join(&self.path, key));
-            Ok(())
-        }
-        fn end(self) -> Result<(), WalkError> {
-            Ok(())
-        }
+    /// A struct and a struct variant's fields walk alike: each field under its key, a skipped
+    /// one recorded as left out.
+    macro_rules! fields_as {
+        ($($tr:ident),+ $(,)?) => {$(
+            impl ser::$tr for Fields<'_> {
+                type Ok = ();
+                type Error = WalkError;
+                fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> Result<(), WalkError> {
+                    self.field(key, v)
+                }
+                fn skip_field(&mut self, key: &'static str) -> Result<(), WalkError> {
+                    // `skip_serializing_if` said the value is its default: the file leaves it out.
+                    self.out.left_out.insert(join(&self.path, key));
+                    Ok(())
+                }
+                fn end(self) -> Result<(), WalkError> {
+                    Ok(())
+                }
+            }
+        )+};
     }
 
-    impl ser::SerializeStructVariant for Fields<'_> {
-        type Ok = ();
-        type Error = WalkError;
-        fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> Result<(), WalkError> {
-            self.field(key, v)
-        }
-        fn skip_field(&mut self, key: &'static str) -> Result<(), WalkError> {
-            self.out.left_out.insert(join(&self.path, key));
-            Ok(())
-        }
-        fn end(self) -> Result<(), WalkError> {
-            Ok(())
-        }
-    }
+    fields_as!(SerializeStruct, SerializeStructVariant);
 
     impl ser::SerializeMap for Fields<'_> {
         type Ok = ();
