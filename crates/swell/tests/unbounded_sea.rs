@@ -46,9 +46,37 @@ fn open_sea_presets_are_unbounded_and_the_paper_figures_stay_patches() {
     for name in ["ocean", "sea", "tessendorf", "ocean-blender", "lake", "airy", "noise", "steep-sines", "coast"] {
         assert_eq!(preset(name).unwrap().water_extent(), Some(WaterExtent::Unbounded), "{name}");
     }
-    for name in ["pool", "springs", "river", "paper-000-fig-4-1", "paper-000-fig-4-5", "valley-lake"] {
+    for name in ["pool", "springs", "river", "paper-000-fig-4-1", "paper-000-fig-4-5"] {
         assert_eq!(preset(name).unwrap().water_extent(), Some(WaterExtent::Patch), "{name}");
     }
+    // The lake's valley rises above the water all along its border: the terrain holds the water.
+    let lake = World::new(preset("valley-lake").unwrap()).unwrap();
+    assert!(!lake.terrain.as_ref().unwrap().border_under_water());
+    assert_eq!(lake.water.unwrap().extent, WaterExtent::Patch);
+}
+
+/// Issue 38: an island, terrain whose border lies under water, sits in an unbounded sea by
+/// default; the same terrain raised until its border is dry holds a patch of water; the key wins
+/// over either.
+#[test]
+fn an_island_sits_in_an_unbounded_sea_and_a_held_lake_stays_a_patch() {
+    let scene = |translate_y: f32, extent: &str| {
+        let text = format!(
+            "version = 1\n[water]\nmodel = 'gerstner'\n{extent}\n\
+             [terrain]\ngenerator = 'hills'\nsize = 65\nextent = [200.0, 200.0]\ncount = 1\n\
+             radius_min = 90.0\nradius_max = 90.0\nheight = 30.0\nflatten = 1\n\
+             [terrain.transform]\ntranslate = [0.0, {translate_y}, 0.0]\n"
+        );
+        World::new(Scene::from_toml(&text, "island").unwrap()).unwrap()
+    };
+    let island = scene(-10.0, "");
+    assert!(island.terrain.as_ref().unwrap().border_under_water());
+    assert_eq!(island.water.as_ref().unwrap().extent, WaterExtent::Unbounded);
+    let dry = scene(10.0, "");
+    assert!(!dry.terrain.as_ref().unwrap().border_under_water(), "heights from 0 up, raised 10 m");
+    assert_eq!(dry.water.as_ref().unwrap().extent, WaterExtent::Patch);
+    assert_eq!(scene(-10.0, "extent = 'patch'").water.unwrap().extent, WaterExtent::Patch);
+    assert_eq!(scene(10.0, "extent = 'unbounded'").water.unwrap().extent, WaterExtent::Unbounded);
 }
 
 /// Coverage: with two very different sky `ground` colours (magenta, green) the images must be

@@ -171,12 +171,16 @@ pub fn auto_lod_spacing(s: &WaterSurface) -> Option<f32> {
 }
 
 /// Shows `[water] extent` and the `[water.lod]` keys; returns whether `s` changed. `auto` is the
-/// extent the scene gets while `extent` is unset (it depends on the model and on whether the
-/// scene has terrain, which the surface alone does not know).
-pub fn show_extent(ui: &mut Ui, s: &mut WaterSurface, auto: WaterExtent) -> bool {
+/// extent the scene gets while `extent` is unset (it depends on the model and on the scene's
+/// terrain, which the surface alone does not know); `None` when the terrain's border decides it
+/// (`WaterExtent::default_for`: unbounded around an island, a patch in a lake).
+pub fn show_extent(ui: &mut Ui, s: &mut WaterSurface, auto: Option<WaterExtent>) -> bool {
     let mut changed = false;
     let options = extent_options();
-    let auto_name = options.iter().find(|(e, _)| *e == auto).map_or("?", |(_, n)| n);
+    let auto_name = match auto {
+        Some(auto) => options.iter().find(|(e, _)| *e == auto).map_or("?", |(_, n)| n),
+        None => "by the terrain's border",
+    };
     let auto_label = format!("auto ({auto_name})");
     let mut menu: Vec<(Option<WaterExtent>, &str)> = vec![(None, auto_label.as_str())];
     menu.extend(options.iter().map(|&(e, n)| (Some(e), n)));
@@ -267,12 +271,15 @@ fn show_patch(ui: &mut Ui, s: &mut WaterSurface) -> bool {
 }
 
 /// Shows the water section; returns whether `water` changed. `has_terrain` says whether the scene
-/// has terrain, which decides the water's automatic extent.
+/// has terrain, whose border then decides the water's automatic extent.
 pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState, has_terrain: bool) -> bool {
     let mut changed = show_model_menu(ui, water, forms);
     let Some(w) = water else { return changed };
     changed |= show_patch(ui, &mut w.surface);
-    changed |= show_extent(ui, &mut w.surface, WaterExtent::default_for(&w.model, has_terrain));
+    // With terrain, a model defined everywhere is unbounded or a patch by the terrain's border.
+    let auto = WaterExtent::default_for(&w.model, false);
+    let auto = (!has_terrain || auto == WaterExtent::Patch).then_some(auto);
+    changed |= show_extent(ui, &mut w.surface, auto);
     ui.label("Material");
     changed |= show_material(ui, &mut w.material);
     changed |= water_transform::show(ui, &mut w.surface, &mut forms.water_transform);

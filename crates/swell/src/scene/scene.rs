@@ -224,12 +224,14 @@ impl Scene {
         Ok(())
     }
 
-    /// How far the scene's water reaches: its `[water] extent`, or by default unbounded for a
-    /// model defined everywhere in a scene without terrain ([`super::WaterExtent::default_for`]).
-    /// `None` without water.
+    /// How far the scene's water reaches as far as the scene alone tells: its `[water] extent`,
+    /// else the default for water no terrain holds ([`super::WaterExtent::default_for`]).
+    /// With terrain and no key, whether the terrain holds the water is known only once it is
+    /// built: [`crate::world::WaterBody::extent`] is the extent drawn, and this is the widest
+    /// it can be (what the memory estimate counts). `None` without water.
     pub fn water_extent(&self) -> Option<super::WaterExtent> {
         let w = self.water.as_ref()?;
-        Some(w.surface.extent.unwrap_or_else(|| super::WaterExtent::default_for(&w.model, self.terrain.is_some())))
+        Some(w.surface.extent.unwrap_or_else(|| super::WaterExtent::default_for(&w.model, false)))
     }
 
     /// Makes relative file paths in the scene (heightmaps, water textures) relative to `dir`, the

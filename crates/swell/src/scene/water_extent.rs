@@ -39,10 +39,12 @@ impl WaterExtent {
     /// The extent a scene gets when it does not say: unbounded for the models defined over the
     /// whole plane ([`crate::water::ModelParams::defined_everywhere`]: the FFT ocean, whose
     /// cascades tile, and the closed forms), a patch for water that is finite by nature (the
-    /// radial pool, the spring lattice, the river) and for any water held by terrain
-    /// (`has_terrain`: a lake or a coast ends where its terrain does).
-    pub fn default_for(model: &WaterModelSpec, has_terrain: bool) -> Self {
-        if model.params().defined_everywhere() && !has_terrain {
+    /// radial pool, the spring lattice, the river) and for water its terrain holds
+    /// (`held_by_terrain`: a lake, whose terrain rises above the water all along its border). An
+    /// island or a coast, whose terrain's border lies partly under water, sits in an unbounded
+    /// sea ([`crate::world::TerrainBody::border_under_water`] decides, once the terrain is built).
+    pub fn default_for(model: &WaterModelSpec, held_by_terrain: bool) -> Self {
+        if model.params().defined_everywhere() && !held_by_terrain {
             WaterExtent::Unbounded
         } else {
             WaterExtent::Patch

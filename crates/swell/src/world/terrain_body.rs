@@ -76,6 +76,17 @@ impl TerrainBody {
         Some(self.transform.translate.y + self.transform.scale.y * self.field.height_at(m.x, m.z))
     }
 
+    /// Whether some of the terrain's border lies under the water at rest (y = 0): water there
+    /// runs on past the terrain's edge (an island, a coast), rather than being held by it (a
+    /// lake, whose rim stands above the water all round). Decides the water's default extent
+    /// ([`crate::scene::WaterExtent::default_for`]); one row of the mesh's world positions, once.
+    pub fn border_under_water(&self) -> bool {
+        let (cols, rows) = (self.field.cols(), self.field.rows());
+        let wet = |i: usize| self.mesh.positions[i].y < 0.0;
+        (0..cols).any(|c| wet(c) || wet((rows - 1) * cols + c))
+            || (0..rows).any(|r| wet(r * cols) || wet(r * cols + cols - 1))
+    }
+
     /// Depth (m) below the water at rest (y = 0) of the ground at world (x, z): positive under
     /// water, negative on dry land, `None` outside the terrain.
     pub fn depth_at(&self, x: f32, z: f32) -> Option<f32> {

@@ -76,7 +76,9 @@ impl World {
                 let model = spec.model.build()?;
                 let patch_grid = spec.surface.grid()?;
                 let placement = spec.surface.placement()?;
-                let extent = scene.water_extent().expect("the scene has water");
+                // Unset, the extent follows the model and whether the terrain holds the water.
+                let held = terrain.as_ref().is_some_and(|t| !t.border_under_water());
+                let extent = spec.surface.extent.unwrap_or_else(|| WaterExtent::default_for(&spec.model, held));
                 let surface = match extent {
                     WaterExtent::Patch => DrawnSurface::Patch(SurfaceMesh::new(patch_grid)),
                     WaterExtent::Unbounded => {
