@@ -120,7 +120,8 @@ enum SwellResult swell_water_foam(struct SwellWater *water,
 // Heights (m above the water at rest) of the surface above world points at time `t` (s,
 // finite). `xz` holds `xz_len` floats, pairs (x, z) in metres; `heights` receives one float per
 // pair, so `heights_len` must be `xz_len / 2` and `xz_len` even. Points are computed in parallel;
-// a million take well under 2 s on 2 cores (docs/embedding.md).
+// a million take well under 2 s on 2 cores (docs/embedding.md). A NaN or infinite coordinate is
+// refused (`SWELL_RESULT_INVALID_ARGUMENT`, the message naming `xz[k]`) and `heights` left as it was.
 //
 // # Safety
 // `water` is a live handle; `xz` points to `xz_len` readable floats, `heights` to `heights_len`
@@ -134,7 +135,8 @@ enum SwellResult swell_water_heights(struct SwellWater *water,
 
 // Unit normals of the surface above world points at time `t` (s, finite). `xz` holds `xz_len`
 // floats, pairs (x, z); `normals` receives (x, y, z) per pair, so `normals_len` must be
-// `3 * xz_len / 2`. Central differences of the height over 2 cm (five height queries a point).
+// `3 * xz_len / 2`. Central differences of the height over 2 cm (five height queries a point). A
+// NaN or infinite coordinate is refused as by `swell_water_heights`.
 //
 // # Safety
 // `water` is a live handle; `xz` points to `xz_len` readable floats, `normals` to `normals_len`

@@ -155,8 +155,9 @@ thread_local! {
 }
 
 fn set_last_error(message: &str) {
-    // An interior NUL cannot come from swell's messages; replace it rather than lose the text.
-    let c = CString::new(message.replace('\0', "?")).expect("NULs removed");
+    // The message echoes user text: control characters (NUL among them, which would end the C
+    // string early), bidi marks and overlong text are escaped and cut as the CLI prints them.
+    let c = CString::new(swell_lib::error::printable(message)).expect("printable text has no NUL");
     LAST_ERROR.with(|e| *e.borrow_mut() = c);
 }
 
@@ -218,6 +219,16 @@ fn check_len(name: &str, len: usize, expected: usize, what: &str) -> Result<(), 
         Ok(())
     } else {
         Err(invalid(name, format!("{len}; must be {expected} ({what})")))
+    }
+}
+
+/// Refuses the first non-finite coordinate of `xz`, naming it `xz[k]` (issue 37): a NaN buoy
+/// must be told with [`SwellResult::InvalidArgument`], not answered with calm water.
+fn check_finite_coordinates(xz: &[Vec2]) -> Result<(), Failure> {
+    let flat = xz.iter().flat_map(|p| [p.x, p.y]);
+    match flat.enumerate().find(|(_, c)| !c.is_finite()) {
+        None => Ok(()),
+        Some((k, c)) => Err(invalid(&format!("xz[{k}]"), format!("{c} is not a finite coordinate (world metres)"))),
     }
 }
 
@@ -377,7 +388,8 @@ pub unsafe extern "C" fn swell_water_foam(
 /// Heights (m above the water at rest) of the surface above world points at time `t` (s,
 /// finite). `xz` holds `xz_len` floats, pairs (x, z) in metres; `heights` receives one float per
 /// pair, so `heights_len` must be `xz_len / 2` and `xz_len` even. Points are computed in parallel;
-/// a million take well under 2 s on 2 cores (docs/embedding.md).
+/// a million take well under 2 s on 2 cores (docs/embedding.md). A NaN or infinite coordinate is
+/// refused (`SWELL_RESULT_INVALID_ARGUMENT`, the message naming `xz[k]`) and `heights` left as it was.
 ///
 /// # Safety
 /// `water` is a live handle; `xz` points to `xz_len` readable floats, `heights` to `heights_len`
@@ -402,6 +414,7 @@ pub unsafe extern "C" fn swell_water_heights(
         check_len("heights_len", heights_len, xz_len / 2, "one height per (x, z) pair: xz_len / 2")?;
         // SAFETY: lengths checked; the caller promises the buffers hold them.
         let (points, out) = unsafe { (vec2s(xz, xz_len), std::slice::from_raw_parts_mut(heights, heights_len)) };
+        check_finite_coordinates(points)?;
         w.pool.install(|| lock(&w.water).heights_at(t, points, out))?;
         Ok(())
     })
@@ -409,7 +422,8 @@ pub unsafe extern "C" fn swell_water_heights(
 
 /// Unit normals of the surface above world points at time `t` (s, finite). `xz` holds `xz_len`
 /// floats, pairs (x, z); `normals` receives (x, y, z) per pair, so `normals_len` must be
-/// `3 * xz_len / 2`. Central differences of the height over 2 cm (five height queries a point).
+/// `3 * xz_len / 2`. Central differences of the height over 2 cm (five height queries a point). A
+/// NaN or infinite coordinate is refused as by `swell_water_heights`.
 ///
 /// # Safety
 /// `water` is a live handle; `xz` points to `xz_len` readable floats, `normals` to `normals_len`
@@ -434,6 +448,7 @@ pub unsafe extern "C" fn swell_water_normals(
         check_len("normals_len", normals_len, 3 * (xz_len / 2), "3 floats per (x, z) pair: 3 * xz_len / 2")?;
         // SAFETY: lengths checked; the caller promises the buffers hold them.
         let (points, out) = unsafe { (vec2s(xz, xz_len), vec3s(normals, normals_len)) };
+        check_finite_coordinates(points)?;
         w.pool.install(|| lock(&w.water).normals_at(t, points, out))?;
         Ok(())
     })

@@ -199,3 +199,42 @@ fn the_message_is_per_thread() {
     .unwrap();
     assert_eq!(last_error(), "main thread");
 }
+
+/// Issue 37: a NaN or infinite coordinate is an argument error naming `xz[k]`, never calm water,
+/// and nothing is written.
+#[test]
+fn non_finite_points_are_refused_naming_the_coordinate() {
+    let text = sea_text(4);
+    let w = water(&text);
+    for (k, bad) in [(1, f32::NAN), (2, f32::INFINITY), (3, f32::NEG_INFINITY)] {
+        let mut xz = [1.0f32, 2.0, -3.0, 4.5];
+        xz[k] = bad;
+        let mut h = [7.0f32; 2];
+        let r = unsafe { swell_water_heights(w, 0.5, xz.as_ptr(), 4, h.as_mut_ptr(), 2) };
+        assert_eq!(r, SwellResult::InvalidArgument);
+        assert_eq!(last_error(), format!("xz[{k}]: {bad} is not a finite coordinate (world metres)"));
+        assert_eq!(h, [7.0; 2]);
+        let mut n = [7.0f32; 6];
+        let r = unsafe { swell_water_normals(w, 0.5, xz.as_ptr(), 4, n.as_mut_ptr(), 6) };
+        assert_eq!(r, SwellResult::InvalidArgument);
+        assert!(last_error().starts_with(&format!("xz[{k}]: ")), "{}", last_error());
+        assert_eq!(n, [7.0; 6]);
+    }
+    unsafe { swell_water_destroy(w) };
+}
+
+/// Issue 37: the last error escapes control characters (NUL among them) and bidi marks, and
+/// cuts an overlong key, as the CLI prints it.
+#[test]
+fn the_last_error_escapes_hostile_text_and_cuts_it() {
+    let hostile = CString::new("[water]\nmodel = 'sines'\n\"w\u{1b}]0;pwned\u{7}\u{202e}\" = 1\n").unwrap();
+    let mut out = null_mut();
+    assert_eq!(unsafe { swell_water_from_toml(hostile.as_ptr(), &mut out) }, SwellResult::Scene);
+    let e = last_error();
+    assert!(!e.contains('\u{1b}') && !e.contains('\u{7}') && !e.contains('\u{202e}'), "{e}");
+    assert!(e.contains("\\u{1b}"), "{e}");
+    let long = CString::new(format!("[water]\nmodel = 'sines'\n{} = 1\n", "k".repeat(100_000))).unwrap();
+    assert_eq!(unsafe { swell_water_from_toml(long.as_ptr(), &mut out) }, SwellResult::Scene);
+    let e = last_error();
+    assert!(e.len() < 4000 && e.contains("characters in all)"), "{} bytes", e.len());
+}

@@ -144,7 +144,8 @@ pub struct TerrainArgs {
     #[arg(long, value_name = "METRES")]
     pub extent: Option<String>,
     /// A generator key as in a scene's [terrain] section, `KEY=VALUE` with a TOML value
-    /// (e.g. `--set roughness=0.6 --set corners=[0,0,10,10]`); repeatable.
+    /// (e.g. `--set roughness=0.6 --set corners=[0,0,10,10]`); repeatable, one key each. The keys
+    /// with flags of their own (generator, size, extent, seed) are refused here.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Output file, `.png` (16-bit heightmap) or `.exr` (float32 heights in metres); the sidecar
@@ -198,7 +199,8 @@ pub struct ExportArgs {
     /// Output file; with --frames, frame k goes to STEM_kkkk.EXT beside it.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
-    /// Mesh format: obj, gltf (JSON + .bin) or glb (default: from the --out extension).
+    /// Mesh format: obj, gltf (JSON + .bin) or glb (default: from the --out extension; given with an
+    /// extension, the two must agree).
     #[arg(long, value_name = "FORMAT")]
     pub format: Option<String>,
     /// Simulation time in seconds (one file), in [-1e7, 1e7].

@@ -18,7 +18,8 @@ fn main() -> ExitCode {
     match cmd::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            // User text in the message (keys, values, paths) is escaped and cut (issue 37).
+            eprintln!("error: {}", swell::error::printable(&e.to_string()));
             ExitCode::FAILURE
         }
     }

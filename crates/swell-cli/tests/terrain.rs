@@ -108,7 +108,7 @@ fn writes_a_16_bit_heightmap_that_a_scene_renders() {
 #[test]
 fn bad_input_fails_clearly_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 9] = [
         (&["--generator", "diamond-square", "--size", "100"], "2^n + 1"),
         (
             &["--generator", "volcano"],
@@ -117,6 +117,11 @@ fn bad_input_fails_clearly_and_writes_nothing() {
         (&["--generator", "noise", "--set", "octaves=99"], "terrain.octaves = 99 is outside [1, 16]"),
         (&["--generator", "hills", "--extent=-5"], "terrain.extent[0] = -5"),
         (&["--generator", "heightmap"], "heightmap"),
+        // Issue 37: --set never beats a flag, nor carries a second key.
+        (&["--generator", "flat", "--size", "33", "--set", "size=65"], "`size` has a flag of its own: give --size"),
+        (&["--generator", "flat", "--set", "generator=noise"], "give --generator instead"),
+        (&["--generator", "noise", "--set", "octaves=3\n[water]\nmodel='fft'"], "--set octaves: the value spans lines"),
+        (&["--generator", "noise", "--set", "octaves=3, roughness = 1"], "octaves"),
     ];
     for (args, expected) in cases {
         let mut full = vec!["terrain"];
@@ -128,6 +133,18 @@ fn bad_input_fails_clearly_and_writes_nothing() {
         assert!(stderr.contains(expected), "{args:?}: {stderr}");
         assert!(files_in(dir.path()).is_empty(), "{args:?} left {:?}", files_in(dir.path()));
     }
+    // The sidecar cannot be written (a directory holds its name): the heightmap is not left behind.
+    std::fs::create_dir(dir.path().join("map.png.toml")).unwrap();
+    let out = swell(dir.path(), &["terrain", "--generator", "flat", "--size", "9", "--out", "map.png"]);
+    assert!(!out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(!dir.path().join("map.png").exists(), "the heightmap was left behind without its sidecar");
+    std::fs::remove_dir(dir.path().join("map.png.toml")).unwrap();
+    // An output under a file names the file, not a missing directory.
+    std::fs::write(dir.path().join("plain"), "x").unwrap();
+    let out = swell(dir.path(), &["terrain", "--generator", "flat", "--out", "plain/map.png"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("plain is a file, not a directory"), "{err}");
+    std::fs::remove_file(dir.path().join("plain")).unwrap();
     let out = swell(dir.path(), &["terrain", "--generator", "flat", "--out", "map.jpg"]);
     assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains(".png"));
     assert!(files_in(dir.path()).is_empty());

@@ -9,7 +9,7 @@ use std::sync::{Mutex, MutexGuard};
 
 use glam::{Vec2, Vec3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn};
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
 use swell::render::Renderer;
@@ -22,9 +22,11 @@ const SOURCE: &str = "toml";
 /// swell's error as a Python exception: OSError for files, ValueError for everything else, with
 /// the message the CLI prints after `error: `.
 fn py_err(e: swell::Error) -> PyErr {
+    // User text in the message is escaped and cut as the CLI prints it (issue 37).
+    let message = swell::error::printable(&e.to_string());
     match e {
-        swell::Error::Io { .. } => PyOSError::new_err(e.to_string()),
-        _ => PyValueError::new_err(e.to_string()),
+        swell::Error::Io { .. } => PyOSError::new_err(message),
+        _ => PyValueError::new_err(message),
     }
 }
 
@@ -52,23 +54,52 @@ impl Water {
 }
 
 /// `x` and `z` broadcast against each other as contiguous float64 arrays, and their broadcast
-/// shape (numpy does it; `ascontiguousarray` makes a 0-d array 1-d, hence the shape apart).
+/// shape (numpy does it; `ascontiguousarray` makes a 0-d array 1-d, hence the shape apart). Each
+/// is first checked by [`real_coordinates`].
 fn broadcast<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
     z: &Bound<'py, PyAny>,
 ) -> PyResult<(PyReadonlyArrayDyn<'py, f64>, PyReadonlyArrayDyn<'py, f64>, Vec<usize>)> {
     let np = py.import("numpy")?;
-    let pair = np.call_method1(
-        "broadcast_arrays",
-        (np.call_method1("asarray", (x, "float64"))?, np.call_method1("asarray", (z, "float64"))?),
-    )?;
+    let pair = np.call_method1("broadcast_arrays", (real_coordinates(&np, "x", x)?, real_coordinates(&np, "z", z)?))?;
     let contiguous = |k: usize| -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
         let a = np.call_method1("ascontiguousarray", (pair.get_item(k)?, "float64"))?;
         Ok(a.downcast_into::<PyArrayDyn<f64>>()?.readonly())
     };
     let shape: Vec<usize> = pair.get_item(0)?.getattr("shape")?.extract()?;
     Ok((contiguous(0)?, contiguous(1)?, shape))
+}
+
+/// `v` as a float64 array if it holds real, finite coordinates (issue 37): integers and floats of
+/// any layout are taken as they were; booleans, complex numbers, datetimes, strings, objects and
+/// `None` raise TypeError naming the argument and the dtype, and a NaN or infinite coordinate
+/// raises ValueError naming the argument, its first bad index and the value: an engine must learn
+/// that its buoy went NaN, not be answered with calm water.
+fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let a = np.call_method1("asarray", (v,))?;
+    let dtype = a.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    if !matches!(kind.as_str(), "i" | "u" | "f") {
+        let printable = swell::error::printable(&dtype.str()?.to_string());
+        return Err(PyTypeError::new_err(format!(
+            "{name}: dtype {printable} is not a real number type; pass integers or floats (world metres)"
+        )));
+    }
+    let a = np.call_method1("asarray", (a, "float64"))?;
+    let finite = np.call_method1("isfinite", (&a,))?.call_method0("ravel")?;
+    if finite.call_method0("all")?.extract::<bool>()? {
+        return Ok(a);
+    }
+    let first: usize = np.call_method1("argmin", (&finite,))?.extract()?;
+    let value: f64 = a.call_method0("ravel")?.get_item(first)?.extract()?;
+    let index: Vec<usize> = np.call_method1("unravel_index", (first, a.getattr("shape")?))?.extract()?;
+    let at = if index.is_empty() {
+        String::new()
+    } else {
+        format!("[{}]", index.iter().map(usize::to_string).collect::<Vec<_>>().join(", "))
+    };
+    Err(py_err(swell::Error::out_of_range(format!("{name}{at}"), value, "finite world metres")))
 }
 
 /// The (x, z) points of two equally shaped arrays, as f32 (the models' precision).

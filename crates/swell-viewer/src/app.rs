@@ -150,13 +150,13 @@ impl ViewerApp {
     fn toggle_overlay(&mut self, flag: fn(&mut swell::scene::RenderSettings) -> &mut bool) {
         *flag(&mut self.editor.draft.render) ^= true;
         if let Err(e) = self.editor.apply() {
-            self.run_error = Some(e.to_string());
+            self.run_error = Some(swell::error::printable(&e.to_string()));
         }
     }
 
     fn move_camera(&mut self, camera: swell::scene::Camera) {
         if let Err(e) = self.editor.set_camera(camera) {
-            self.run_error = Some(e.to_string());
+            self.run_error = Some(swell::error::printable(&e.to_string()));
         }
     }
 
@@ -198,7 +198,7 @@ impl ViewerApp {
         };
         let click = self.panels.click_drop;
         if let Err(e) = click.validate() {
-            self.run_error = Some(e.to_string());
+            self.run_error = Some(swell::error::printable(&e.to_string()));
         } else if self.editor.disturb_water() {
             // The render thread's world, the one shown, takes the dent.
             let d = crate::render_thread::Disturbance { x: at.x, z: at.y, depth: click.depth, radius: click.radius };
@@ -409,7 +409,7 @@ impl ViewerApp {
                 let failure = self.editor.frame_failed(revision, &e);
                 if failure == FrameFailure::Unrecoverable {
                     self.clock.playing = false;
-                    self.run_error = Some(e.to_string());
+                    self.run_error = Some(swell::error::printable(&e.to_string()));
                 }
             }
             None => {}
@@ -423,7 +423,7 @@ impl ViewerApp {
         }
         let threads = self.editor.scene().render.threads;
         if let Err(e) = self.view.request(ctx, self.editor.scene(), key, threads) {
-            self.run_error = Some(e.to_string());
+            self.run_error = Some(swell::error::printable(&e.to_string()));
         }
     }
 }

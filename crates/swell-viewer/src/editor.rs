@@ -114,7 +114,7 @@ impl SceneEditor {
             return FrameFailure::Unrecoverable;
         }
         self.scene = self.shown.clone();
-        self.error = Some(error.to_string());
+        self.error = Some(swell::error::printable(&error.to_string()));
         self.revision += 1;
         self.shown_revision = self.revision;
         FrameFailure::Refused

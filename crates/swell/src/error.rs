@@ -112,6 +112,56 @@ impl Error {
     }
 }
 
+/// Longest line of a message [`printable`] passes, in characters (escapes counted as written).
+pub const MAX_MESSAGE_LINE_CHARS: usize = 400;
+/// Most lines of a message [`printable`] passes.
+pub const MAX_MESSAGE_LINES: usize = 40;
+
+/// `message` made safe to print in a terminal, store as C's last error or raise in Python (issue
+/// 37): a message echoes user text (keys, values, file names, the scene line a parser quotes), and
+/// that text may hold escape sequences that retitle or clear the terminal, NUL bytes that end a C
+/// string early, bidirectional overrides that show text in another order than it is, or a
+/// 100,000-character key. Control characters other than newline and tab, and the bidi embedding,
+/// override and isolate marks (U+202A-U+202E, U+2066-U+2069, U+200E, U+200F, U+061C), are written
+/// as `\u{..}`; a line longer than [`MAX_MESSAGE_LINE_CHARS`] is cut there with its total length
+/// stated, and lines past [`MAX_MESSAGE_LINES`] are counted, not printed. The CLI, the C ABI and
+/// the Python package print every [`Error`] through this, so all three show the same text.
+pub fn printable(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(MAX_MESSAGE_LINE_CHARS * 2));
+    let total_lines = message.split('\n').count();
+    for (k, line) in message.split('\n').take(MAX_MESSAGE_LINES).enumerate() {
+        if k > 0 {
+            out.push('\n');
+        }
+        let mut written = 0;
+        for (count, c) in line.chars().enumerate() {
+            let escaped = needs_escape(c).then(|| format!("\\u{{{:x}}}", c as u32));
+            let width = escaped.as_ref().map_or(1, |e| e.len());
+            if written + width > MAX_MESSAGE_LINE_CHARS {
+                let rest = line.chars().skip(count).count();
+                out.push_str(&format!("... ({} characters in all)", count + rest));
+                break;
+            }
+            written += width;
+            match escaped {
+                Some(e) => out.push_str(&e),
+                None => out.push(c),
+            }
+        }
+    }
+    if total_lines > MAX_MESSAGE_LINES {
+        out.push_str(&format!("\n... ({} more lines)", total_lines - MAX_MESSAGE_LINES));
+    }
+    out
+}
+
+/// Whether [`printable`] writes `c` as an escape: control characters but newline and tab, and the
+/// marks that reorder text (Unicode's bidi controls).
+fn needs_escape(c: char) -> bool {
+    (c.is_control() && c != '\n' && c != '\t')
+        || matches!(c, '\u{200E}' | '\u{200F}' | '\u{061C}' | '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}')
+}
+
 /// A number as people read it in a message: as typed for everyday sizes, in scientific notation
 /// for huge or tiny ones (`1e300`, not its 301 digits).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -197,5 +247,36 @@ pub fn check_direction(key: &str, d: glam::Vec2) -> Result<()> {
         Ok(())
     } else {
         Err(Error::invalid(key, format!("{:?} must be a finite, non-zero (x, z) vector", d.to_array())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn printable_escapes_terminal_controls_nul_and_bidi_marks_and_keeps_lines() {
+        let hostile = "water.\u{1b}]0;pwned\u{7}\u{1b}[2J\0key\u{202E}gnp.exe\r: bad\n\tsecond line";
+        let p = printable(hostile);
+        assert_eq!(p, "water.\\u{1b}]0;pwned\\u{7}\\u{1b}[2J\\u{0}key\\u{202e}gnp.exe\\u{d}: bad\n\tsecond line");
+        assert!(!p.chars().any(needs_escape));
+        // Plain messages pass unchanged.
+        let plain = "scene.toml: water.cells[0] = 0 is outside [1, 4096]";
+        assert_eq!(printable(plain), plain);
+    }
+
+    #[test]
+    fn printable_cuts_long_lines_and_many_lines_and_states_the_totals() {
+        let key = "k".repeat(100_000);
+        let p = printable(&format!("unknown key `{key}`"));
+        assert!(p.len() < MAX_MESSAGE_LINE_CHARS + 40, "{} bytes", p.len());
+        assert!(p.ends_with("... (100014 characters in all)"), "{}", &p[p.len() - 40..]);
+        // Escapes count at their written width, so a line of escapes is cut as short.
+        let p = printable(&"\u{1b}".repeat(10_000));
+        assert!(p.len() <= MAX_MESSAGE_LINE_CHARS + 40);
+        assert!(p.ends_with("(10000 characters in all)"));
+        let p = printable(&"line\n".repeat(100));
+        assert_eq!(p.lines().count(), MAX_MESSAGE_LINES + 1);
+        assert!(p.ends_with("... (61 more lines)"), "{p}");
     }
 }

@@ -103,21 +103,32 @@ fn frame_path(out: &Path, k: u32) -> PathBuf {
 
 fn resolve_format(a: &ExportArgs) -> Result<Format> {
     let ext = a.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let (name, key) = match &a.format {
-        Some(f) => (f.to_ascii_lowercase(), "--format"),
-        None => (ext.clone().unwrap_or_default(), "--out"),
+    let parse = |name: &str| match name {
+        "obj" => Some(Format::Obj),
+        "gltf" => Some(Format::Gltf),
+        "glb" => Some(Format::Glb),
+        _ => None,
     };
-    match name.as_str() {
-        "obj" => Ok(Format::Obj),
-        "gltf" => Ok(Format::Gltf),
-        "glb" => Ok(Format::Glb),
-        _ if key == "--format" => Err(Error::invalid(key, format!("`{name}` is not one of obj, gltf, glb"))),
-        _ => Err(Error::invalid(
-            key,
-            format!(
-                "cannot tell the format of {}: give --format obj|gltf|glb or end it in .obj, .gltf or .glb",
-                a.out.display()
-            ),
+    let Some(given) = &a.format else {
+        return ext.as_deref().and_then(parse).ok_or_else(|| {
+            Error::invalid(
+                "--out",
+                format!(
+                    "cannot tell the format of {}: give --format obj|gltf|glb or end it in .obj, .gltf or .glb",
+                    a.out.display()
+                ),
+            )
+        });
+    };
+    let name = given.to_ascii_lowercase();
+    let format =
+        parse(&name).ok_or_else(|| Error::invalid("--format", format!("`{given}` is not one of obj, gltf, glb")))?;
+    // Issue 37: `--format obj --out x.glb` wrote OBJ text into x.glb. An extension must agree.
+    match ext {
+        Some(e) if e != name => Err(Error::invalid(
+            "--out",
+            format!("{} ends in .{e} but --format is {name}: end it in .{name} or drop --format", a.out.display()),
         )),
+        _ => Ok(format),
     }
 }

@@ -40,7 +40,7 @@ pub fn run(cli: Cli) -> Result<()> {
 pub fn load_scene(source: &SceneSource) -> Result<Scene> {
     let scene = read_scene(source)?;
     if let Some(warning) = scene.water.as_ref().and_then(|w| w.model.loop_warning()) {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", swell::error::printable(&warning.to_string()));
     }
     Ok(scene)
 }
@@ -153,8 +153,22 @@ fn check_output_dir(out: &std::path::Path) -> Result<()> {
     if dir.is_dir() {
         Ok(())
     } else {
-        Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())))
+        Err(Error::invalid("--out", missing_dir(dir)))
     }
+}
+
+/// Why `dir` cannot hold an output, naming the real cause (issue 37): the first of its ancestors
+/// that exists but is not a directory (`out/x.png` under a file `out`), or that it does not exist.
+fn missing_dir(dir: &std::path::Path) -> String {
+    for a in dir.ancestors().filter(|a| !a.as_os_str().is_empty()) {
+        if a.is_dir() {
+            break;
+        }
+        if a.exists() {
+            return format!("{} is a file, not a directory, so {} cannot be under it", a.display(), dir.display());
+        }
+    }
+    format!("directory {} does not exist", dir.display())
 }
 
 #[cfg(test)]

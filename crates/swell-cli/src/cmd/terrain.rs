@@ -16,10 +16,18 @@ pub fn run(a: TerrainArgs) -> Result<()> {
     let spec = resolve(&a)?;
     let pool = thread_pool(a.threads)?;
     let field = pool.install(|| spec.build())?;
-    let sidecar = match format {
-        Format::Png => write_heightmap(&a.out, &field)?,
-        Format::Exr => write_heightmap_exr(&a.out, &field)?,
+    // The image is written (atomically) before its sidecar: if the sidecar then fails, an image
+    // this run created is removed again, so a failed run leaves nothing behind (issue 37).
+    let existed = a.out.exists();
+    let written = match format {
+        Format::Png => write_heightmap(&a.out, &field),
+        Format::Exr => write_heightmap_exr(&a.out, &field),
     };
+    let sidecar = written.inspect_err(|_| {
+        if !existed {
+            let _ = std::fs::remove_file(&a.out);
+        }
+    })?;
     let (lo, hi) = field.min_max();
     eprintln!(
         "wrote {} ({} x {} vertices over {} x {} m, heights {lo:.2}..{hi:.2} m) and {}",
@@ -60,7 +68,14 @@ fn resolve(a: &TerrainArgs) -> Result<TerrainSpec> {
     Ok(spec)
 }
 
-/// Parses `KEY=VALUE`, the value as TOML (a bare word that is not TOML is taken as a string).
+/// The `[terrain]` keys that have a flag of their own: `--set` may not set them, so that a flag
+/// given on the command line is never silently beaten by a `--set` (issue 37).
+const KEYS_WITH_FLAGS: [(&str, &str); 4] =
+    [("generator", "--generator"), ("size", "--size"), ("extent", "--extent"), ("seed", "--seed")];
+
+/// Parses `KEY=VALUE`, the value as one TOML value (a bare word that is not TOML is taken as a
+/// string). A value that carries more than one key (a newline and a second line or table) and a
+/// key with a flag of its own are refused.
 fn parse_set(kv: &str) -> Result<(String, toml::Value)> {
     let (key, value) = kv
         .split_once('=')
@@ -69,8 +84,23 @@ fn parse_set(kv: &str) -> Result<(String, toml::Value)> {
     if key.is_empty() || !key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
         return Err(Error::invalid("--set", format!("`{key}` is not a [terrain] key name")));
     }
+    if let Some((_, flag)) = KEYS_WITH_FLAGS.iter().find(|(k, _)| *k == key) {
+        return Err(Error::invalid("--set", format!("`{key}` has a flag of its own: give {flag} instead")));
+    }
+    if value.contains(['\n', '\r']) {
+        return Err(Error::invalid(
+            format!("--set {key}"),
+            "the value spans lines; give one TOML value per --set (one key each)",
+        ));
+    }
     let value = match toml::from_str::<toml::Table>(&format!("v = {}", value.trim())) {
-        Ok(mut t) => t.remove("v").expect("the table has the key just parsed"),
+        Ok(mut t) if t.len() == 1 => t.remove("v").expect("the table has the key just parsed"),
+        Ok(_) => {
+            return Err(Error::invalid(
+                format!("--set {key}"),
+                "the value holds more than one key; give one per --set",
+            ))
+        }
         Err(_) => toml::Value::String(value.trim().to_string()),
     };
     Ok((key.to_string(), value))
@@ -130,13 +160,7 @@ fn output_format(out: &Path, format: Option<&str>) -> Result<Format> {
             ))
         }
     };
-    let dir = match out.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        return Err(Error::invalid("--out", format!("directory {} does not exist", dir.display())));
-    }
+    super::check_output_dir(out)?;
     Ok(format)
 }
 

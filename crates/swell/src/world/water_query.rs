@@ -97,6 +97,18 @@ fn check_time(t: f64) -> Result<()> {
     }
 }
 
+/// Refuses the first point with a non-finite coordinate, naming it `points[i]` (issue 37): a NaN
+/// buoy must be told, not answered with calm water.
+fn check_points(points: &[Vec2]) -> Result<()> {
+    match points.iter().position(|p| !p.is_finite()) {
+        None => Ok(()),
+        Some(i) => {
+            let p = points[i];
+            Err(Error::out_of_range(format!("points[{i}]"), format!("({}, {})", p.x, p.y), "finite (x, z) in metres"))
+        }
+    }
+}
+
 /// Checks that a caller's buffer `name` holds exactly `expected` elements.
 fn check_len(name: &str, len: usize, expected: usize, what: &str) -> Result<()> {
     if len == expected {
@@ -228,10 +240,12 @@ impl Water {
 
     /// Heights (m) of the surface above the world points `points` = (x, z) (m) at time `t` (s),
     /// into `out` (same length), in parallel; each point's answer is the one
-    /// [`World::water_height_at`](super::World::water_height_at) gives. Non-finite points give
-    /// non-finite heights. Accuracy is each model's [`WaveModel::height_at`]'s.
+    /// [`World::water_height_at`](super::World::water_height_at) gives. A point with a non-finite
+    /// coordinate is refused (naming the first), `out` left as it was. Accuracy is each model's
+    /// [`WaveModel::height_at`]'s.
     pub fn heights_at(&mut self, t: f64, points: &[Vec2], out: &mut [f32]) -> Result<()> {
         check_len("heights", out.len(), points.len(), "one per point")?;
+        check_points(points)?;
         self.advance_to(t)?;
         let (model, placement) = (self.model.as_ref(), self.placement);
         out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
@@ -248,6 +262,7 @@ impl Water {
     /// normals to the differences' accuracy (the slope's change over 2 cm).
     pub fn normals_at(&mut self, t: f64, points: &[Vec2], out: &mut [Vec3]) -> Result<()> {
         check_len("normals", out.len(), points.len(), "one per point")?;
+        check_points(points)?;
         self.advance_to(t)?;
         let (model, placement) = (self.model.as_ref(), self.placement);
         out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
@@ -400,6 +415,15 @@ mod tests {
         assert_eq!(e, "t = NaN is outside finite seconds");
         let e = w.heights_at(0.0, &[Vec2::ZERO], &mut []).unwrap_err().to_string();
         assert_eq!(e, "heights: holds 0 elements; must hold 1 (one per point)");
+        // A NaN or infinite point is refused, naming the first, and nothing is written.
+        let mut h = [7.0; 3];
+        let bad = [Vec2::ZERO, Vec2::new(1.0, f32::NAN), Vec2::new(f32::INFINITY, 0.0)];
+        let e = w.heights_at(0.0, &bad, &mut h).unwrap_err().to_string();
+        assert_eq!(e, "points[1] = (1, NaN) is outside finite (x, z) in metres");
+        assert_eq!(h, [7.0; 3]);
+        let e = w.normals_at(0.0, &bad[2..], &mut [Vec3::ZERO]).unwrap_err().to_string();
+        assert_eq!(e, "points[0] = (inf, 0) is outside finite (x, z) in metres");
+        assert!(w.height_at(f32::NEG_INFINITY, 0.0, 0.0).is_err());
         let e = w.foam(f64::INFINITY, &mut [0.0; 25]).unwrap_err().to_string();
         assert!(e.starts_with("t = inf"), "{e}");
         let no_water = "version = 1\n[camera]\neye = [0.0, 5.0, 10.0]\ntarget = [0.0, 0.0, 0.0]\n";
