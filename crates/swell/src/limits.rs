@@ -61,6 +61,15 @@ pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 /// 100 000 `[` cannot overflow the stack, whatever the parser's own guards.
 pub const MAX_NESTING_DEPTH: usize = 64;
 
+/// Most list items in a scene file: 16 384, counted before parsing as the elements of every array
+/// and every `[[table]]` entry.
+///
+/// The largest legitimate scene (64 waves in each of a few lists, 16 lights, a vector per key)
+/// holds under 2 000. Counting first means a file of 150 000 waves is refused in milliseconds,
+/// not after seconds and hundreds of megabytes of parsing (issue 37); the wave models' own limits
+/// (e.g. 64 Gerstner waves) then name the key that is too long.
+pub const MAX_LIST_ITEMS: usize = 16_384;
+
 /// Largest wave amplitude or wavelength, metres: 100 km, far past any real wave (the longest ocean
 /// swells are about 1 km; tsunamis about 200 km but not modelled here), small enough that sums of
 /// many waves stay finite in f32.
@@ -138,13 +147,24 @@ pub fn check_scene_text(text: &str, source: &str) -> Result<()> {
             ),
         });
     }
-    let depth = nesting_depth(text);
-    if depth > MAX_NESTING_DEPTH {
+    let shape = text_shape(text);
+    if shape.depth > MAX_NESTING_DEPTH {
         return Err(Error::Parse {
             path: source.into(),
             message: format!(
-                "arrays or inline tables nested {depth}+ deep, over the limit of {MAX_NESTING_DEPTH} \
-                 (MAX_NESTING_DEPTH)"
+                "arrays or inline tables nested {}+ deep, over the limit of {MAX_NESTING_DEPTH} \
+                 (MAX_NESTING_DEPTH)",
+                shape.depth
+            ),
+        });
+    }
+    if shape.items > MAX_LIST_ITEMS {
+        return Err(Error::Parse {
+            path: source.into(),
+            message: format!(
+                "{}+ list items (array elements and [[table]] entries), over the limit of {MAX_LIST_ITEMS} \
+                 (MAX_LIST_ITEMS)",
+                shape.items
             ),
         });
     }
@@ -166,10 +186,26 @@ pub fn read_text_limited(path: &std::path::Path, max_bytes: u64, limit_name: &st
     String::from_utf8(bytes).map_err(|_| parse_err("not UTF-8 text".into()))
 }
 
+/// What [`text_shape`] finds in scene text before it is parsed.
+struct TextShape {
+    /// Deepest `[` / `{` nesting.
+    depth: usize,
+    /// Array elements (commas inside brackets, plus one per array) and `[[table]]` entries.
+    items: usize,
+}
+
 /// Deepest `[` / `{` nesting in TOML `text`, outside strings and comments, stopping early once past
 /// [`MAX_NESTING_DEPTH`]. Table headers (`[a]`, `[[a]]`) count 1 or 2, never more, so they are
 /// harmless.
+#[cfg(test)]
 fn nesting_depth(text: &str) -> usize {
+    text_shape(text).depth
+}
+
+/// The nesting depth and list items of TOML `text`, outside strings and comments, stopping early
+/// once past [`MAX_NESTING_DEPTH`] or [`MAX_LIST_ITEMS`]. Items are over-counted (a trailing comma,
+/// a table header's brackets), never under-counted, which is the safe side of a limit.
+fn text_shape(text: &str) -> TextShape {
     #[derive(PartialEq)]
     enum State {
         Code,
@@ -180,7 +216,7 @@ fn nesting_depth(text: &str) -> usize {
         MultiLiteral,
     }
     let b = text.as_bytes();
-    let (mut state, mut depth, mut max, mut i) = (State::Code, 0usize, 0usize, 0usize);
+    let (mut state, mut depth, mut max, mut i, mut items) = (State::Code, 0usize, 0usize, 0usize, 0usize);
     while i < b.len() {
         let c = b[i];
         match state {
@@ -198,9 +234,16 @@ fn nesting_depth(text: &str) -> usize {
                 b'\'' => state = State::Literal,
                 b'[' | b'{' => {
                     depth += 1;
+                    items += usize::from(c == b'[');
                     max = max.max(depth);
-                    if max > MAX_NESTING_DEPTH {
-                        return max;
+                    if max > MAX_NESTING_DEPTH || items > MAX_LIST_ITEMS {
+                        return TextShape { depth: max, items };
+                    }
+                }
+                b',' if depth > 0 => {
+                    items += 1;
+                    if items > MAX_LIST_ITEMS {
+                        return TextShape { depth: max, items };
                     }
                 }
                 b']' | b'}' => depth = depth.saturating_sub(1),
@@ -238,7 +281,7 @@ fn nesting_depth(text: &str) -> usize {
         }
         i += 1;
     }
-    max
+    TextShape { depth: max, items }
 }
 
 #[cfg(test)]
@@ -259,6 +302,30 @@ mod tests {
         assert_eq!(nesting_depth(&deep), MAX_NESTING_DEPTH + 1);
         let e = check_scene_text(&deep, "deep.toml").unwrap_err().to_string();
         assert!(e.starts_with("deep.toml: arrays or inline tables nested") && e.contains("64"), "{e}");
+    }
+
+    /// 150 000 waves are refused before the parser builds them, and inline arrays count as
+    /// `[[table]]` entries do; legitimate scenes stay far below the limit.
+    #[test]
+    fn long_lists_are_refused_before_parsing() {
+        let wave = "[[water.waves]]\namplitude = 0.1\nwavelength = 9.0\nspeed = 3.7\ndirection = [1.0, 0.0]\n";
+        let many = format!("[water]\nmodel = 'gerstner'\n{}", wave.repeat(150_000));
+        let e = check_scene_text(&many, "many.toml").unwrap_err().to_string();
+        assert!(e.starts_with("many.toml: 16385+ list items") && e.contains("(MAX_LIST_ITEMS)"), "{e}");
+        let inline = format!("a = [{}]\n", "1, ".repeat(20_000));
+        assert!(check_scene_text(&inline, "a").unwrap_err().to_string().contains("MAX_LIST_ITEMS"));
+        assert_eq!(
+            text_shape("a = [1, 2, 3]\ns = '[,,]' # ,,[\n[[b]]\n").items,
+            3 + 2,
+            "an array of 3, a header's two brackets"
+        );
+        let legit = format!("[water]\nmodel = 'gerstner'\n{}", wave.repeat(64));
+        assert!(text_shape(&legit).items < MAX_LIST_ITEMS / 8);
+        #[cfg(feature = "render")]
+        for p in crate::scene::PRESETS {
+            let text = crate::scene::preset(p.name).unwrap().to_toml();
+            assert!(text_shape(&text).items < MAX_LIST_ITEMS / 8, "{}", p.name);
+        }
     }
 
     #[cfg(feature = "render")]

@@ -291,6 +291,27 @@ mod tests {
         assert!(e.to_string().starts_with("t: render.exposure = NaN"), "{e}");
     }
 
+    /// serde would read a table written as an array field by position; a scene file names its
+    /// fields (issue 37), at any depth: a section, a nested table, an element of an array.
+    #[test]
+    fn tables_written_as_arrays_are_refused_naming_the_key() {
+        let cases = [
+            ("[water]\nmodel = 'fft'\nextent = 'unbounded'\nlod = [4, 96, 0.5]\n", "water.lod"),
+            ("camera = [[0.0, 5.0, 10.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], 45.0, 0.1, 1000.0]\n[water]\nmodel = 'fft'\n", "camera"),
+            ("[water]\nmodel = 'fft'\nmaterial = [[0.0, 0.1, 0.2]]\n", "water.material"),
+            ("[water]\nmodel = 'gerstner'\nwaves = [[0.5, 20.0, 5.0, [1.0, 0.0], 0.5]]\n", "water.waves[0]"),
+        ];
+        for (text, key) in cases {
+            let e = Scene::from_toml(text, "t").unwrap_err().to_string();
+            assert!(e.starts_with(&format!("t: {key}: must be a table")), "{text}: {e}");
+        }
+        // Arrays that are arrays stay arrays, and every preset still reads.
+        for p in crate::scene::PRESETS {
+            let text = crate::scene::preset(p.name).unwrap().to_toml();
+            Scene::from_toml(&text, p.name).unwrap();
+        }
+    }
+
     /// Every float of a saved scene is written in its shortest form: no `0.10000000149011612`.
     #[test]
     fn saved_floats_are_shortest_and_load_back_equal() {

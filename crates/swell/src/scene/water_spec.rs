@@ -304,12 +304,19 @@ fn to_table<T: Serialize>(v: &T) -> toml::Table {
 }
 
 /// Deserialises `value` as `T`, reporting errors with the full key path (`water.waves[2].speed`).
-pub(crate) fn deserialize_at<T: DeserializeOwned>(
+///
+/// serde lets a struct be written as an array, field by position (`lod = [4, 96, 0.5]`), which
+/// a scene file must not (issue 37): a key order is not part of the format, and a reader of the
+/// file cannot tell which number is which. So the value read is written back and every place
+/// where the file holds an array but `T` writes a table is refused, naming its key path.
+pub(crate) fn deserialize_at<T: DeserializeOwned + Serialize>(
     value: impl Into<toml::Value>,
     prefix: &str,
     source: &str,
 ) -> Result<T> {
-    serde_path_to_error::deserialize(value.into()).map_err(|e| {
+    let value = value.into();
+    let shape = value.clone();
+    let parsed: T = serde_path_to_error::deserialize(value).map_err(|e| {
         let inner = e.path().to_string();
         let key = match (prefix.is_empty(), inner.as_str()) {
             (true, _) => inner.clone(),
@@ -322,7 +329,36 @@ pub(crate) fn deserialize_at<T: DeserializeOwned>(
         let message = e.into_inner().to_string();
         let message = message.lines().filter(|l| !l.starts_with("in `")).collect::<Vec<_>>().join(" ");
         Error::Parse { path: source.to_string(), message: format!("{key}: {}", message.trim_end()) }
-    })
+    })?;
+    // A type that cannot be written as TOML (none of the scene's) has no shape to compare with.
+    if let Ok(written) = toml::Value::try_from(&parsed) {
+        if let Some(key) = array_for_table(&shape, &written, prefix.to_string()) {
+            let shown = if key.is_empty() { "the scene".to_string() } else { key };
+            return Err(Error::Parse {
+                path: source.to_string(),
+                message: format!(
+                    "{shown}: must be a table (a [section] or {{ key = value, ... }}), found an array; \
+                     its fields are named, not given by position"
+                ),
+            });
+        }
+    }
+    Ok(parsed)
+}
+
+/// The key path of the first place where `read` (as the file has it) holds an array and
+/// `written` (the same value written back) a table, if any.
+fn array_for_table(read: &toml::Value, written: &toml::Value, at: String) -> Option<String> {
+    use toml::Value::{Array, Table};
+    let join = |key: &str| if at.is_empty() { key.to_string() } else { format!("{at}.{key}") };
+    match (read, written) {
+        (Array(_), Table(_)) => Some(at),
+        (Table(r), Table(w)) => r.iter().find_map(|(k, v)| w.get(k).and_then(|wv| array_for_table(v, wv, join(k)))),
+        (Array(r), Array(w)) => {
+            r.iter().zip(w).enumerate().find_map(|(i, (v, wv))| array_for_table(v, wv, format!("{at}[{i}]")))
+        }
+        _ => None,
+    }
 }
 
 #[cfg(test)]
