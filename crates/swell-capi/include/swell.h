@@ -16,9 +16,12 @@
  * Threads: every function may be called from any thread. Calls on one handle are serialised by a
  * lock inside it (two threads querying one SwellWater wait for each other); different handles
  * run in parallel. A destroy function must not race with another call on the same handle. The
- * work inside a call runs on the handle's own worker threads (one per core), created with the
- * handle and joined by its destroy function: a program that destroys its handles has no swell
- * thread left.
+ * work inside a call runs on worker threads (one per core) that all handles share, started with
+ * the first handle and joined when the last is destroyed: a program that destroys its handles
+ * has no swell thread left, and 200 handles still use one thread per core.
+ *
+ * Long calls: a spring mesh asked minutes ahead reports progress to the callback set by
+ * swell_water_set_progress, and stops (SWELL_RESULT_CANCELLED) when it returns non-zero.
  */
 
 #ifndef SWELL_H
@@ -45,6 +48,9 @@ typedef enum SwellResult {
   // A bug in swell: a panic was caught at the boundary. The handle may be used again; its next
   // query recomputes the state from scratch where needed.
   SWELL_RESULT_PANIC = 5,
+  // The progress callback (`swell_water_set_progress`) asked a long call to stop. Nothing is
+  // wrong: the same call made again continues from where this one stopped.
+  SWELL_RESULT_CANCELLED = 6,
 } SwellResult;
 
 // A whole scene (water, terrain, camera, lights, sky), ready to render.
@@ -54,6 +60,14 @@ typedef struct SwellScene SwellScene;
 // The water of a scene: its model, grid and placement, answering queries about any time.
 // Created by `swell_water_from_toml`, freed by `swell_water_destroy`.
 typedef struct SwellWater SwellWater;
+
+// Told the progress of a long call on a water handle (a spring mesh asked far ahead), about
+// every million node updates (10-50 ms of work): `fraction` done in [0, 1), and `user_data` as
+// given to `swell_water_set_progress`. Return 0 to go on, any other value to stop the call, which
+// then returns `SWELL_RESULT_CANCELLED`. It is called on one of swell's worker threads while the
+// call waits, never concurrently with itself for one handle; it must not call swell on the same
+// handle (its lock is held) and must return (no `longjmp` out of it).
+typedef int (*SwellProgress)(double fraction, void *user_data);
 
 #ifdef __cplusplus
 extern "C" {
@@ -81,6 +95,17 @@ enum SwellResult swell_water_from_toml(const char *toml, struct SwellWater **out
 // `water` is NULL or a handle from `swell_water_from_toml` not yet destroyed, with no other call
 // on it in progress.
 void swell_water_destroy(struct SwellWater *water);
+
+// Sets (or, with a NULL `callback`, removes) the progress callback of long calls on `water`
+// (see `SwellProgress`): a spring mesh asked minutes ahead reports how far it has got and stops
+// when the callback returns non-zero. Closed-form and spectral models never call it.
+//
+// # Safety
+// `water` is a live handle with no other call on it in progress; `callback`, if not NULL, is
+// callable with `user_data` from any thread until it is replaced or the handle destroyed.
+enum SwellResult swell_water_set_progress(struct SwellWater *water,
+                                          SwellProgress callback,
+                                          void *user_data);
 
 // The grid's size: `*rows` vertices along +Z, `*cols` vertices along +X. Position and normal
 // buffers hold `3 * rows * cols` floats, foam buffers `rows * cols`.

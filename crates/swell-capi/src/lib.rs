@@ -9,17 +9,18 @@
 //!   [`swell_last_error_message`] on the calling thread.
 //!
 //! Handles are `Box`es of a `Mutex` around the library's [`swell_lib::Water`] or a rendered
-//! [`swell_lib::world::World`]; the lock serialises calls on one handle. Each handle runs its work
-//! on its own rayon pool, whose threads are joined when the handle is destroyed: the library
-//! leaves no thread behind (rayon's global pool, never joined, would still be running at exit,
-//! which valgrind reports as possibly lost thread memory).
+//! [`swell_lib::world::World`]; the lock serialises calls on one handle. All live handles run
+//! their work on one shared rayon pool (one thread per core, however many handles: 200 handles
+//! once meant 400 threads on 2 cores), whose threads are joined when the last handle is
+//! destroyed: the library leaves no thread behind (rayon's global pool, never joined, would still
+//! be running at exit, which valgrind reports as possibly lost thread memory).
 
 #![allow(clippy::missing_safety_doc)] // Each function's doc comment states its safety contract.
 
 use std::cell::RefCell;
-use std::ffi::{c_char, CStr, CString};
+use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, Weak};
 use std::thread::JoinHandle;
 
 use glam::{Vec2, Vec3};
@@ -47,20 +48,31 @@ pub enum SwellResult {
     /// A bug in swell: a panic was caught at the boundary. The handle may be used again; its next
     /// query recomputes the state from scratch where needed.
     Panic = 5,
+    /// The progress callback (`swell_water_set_progress`) asked a long call to stop. Nothing is
+    /// wrong: the same call made again continues from where this one stopped.
+    Cancelled = 6,
 }
+
+/// Told the progress of a long call on a water handle (a spring mesh asked far ahead), about
+/// every million node updates (10-50 ms of work): `fraction` done in [0, 1), and `user_data` as
+/// given to `swell_water_set_progress`. Return 0 to go on, any other value to stop the call, which
+/// then returns `SWELL_RESULT_CANCELLED`. It is called on one of swell's worker threads while the
+/// call waits, never concurrently with itself for one handle; it must not call swell on the same
+/// handle (its lock is held) and must return (no `longjmp` out of it).
+pub type SwellProgress = Option<unsafe extern "C" fn(fraction: f64, user_data: *mut c_void) -> c_int>;
 
 /// The water of a scene: its model, grid and placement, answering queries about any time.
 /// Created by `swell_water_from_toml`, freed by `swell_water_destroy`.
 pub struct SwellWater {
     water: Mutex<Water>,
-    pool: Pool,
+    pool: Arc<Pool>,
 }
 
 /// A whole scene (water, terrain, camera, lights, sky), ready to render.
 /// Created by `swell_scene_from_toml`, freed by `swell_scene_destroy`.
 pub struct SwellScene {
     inner: Mutex<SceneState>,
-    pool: Pool,
+    pool: Arc<Pool>,
 }
 
 struct SceneState {
@@ -69,8 +81,8 @@ struct SceneState {
     rgba: Vec<u8>,
 }
 
-/// A handle's worker threads: a rayon pool whose threads it spawned itself, so that it can join
-/// them when the handle is destroyed.
+/// The handles' worker threads: a rayon pool whose threads it spawned itself, so that it can join
+/// them when the last handle using it is destroyed.
 struct Pool {
     pool: Option<rayon::ThreadPool>,
     threads: Arc<Mutex<Vec<JoinHandle<()>>>>,
@@ -102,6 +114,19 @@ impl Pool {
         Ok(Self { pool: Some(pool), threads: handles })
     }
 
+    /// The pool every live handle shares, started by the first handle and stopped (its threads
+    /// joined) with the last: a handle holds an `Arc`, this slot only a `Weak`.
+    fn shared() -> Result<Arc<Self>, Failure> {
+        static SHARED: Mutex<Weak<Pool>> = Mutex::new(Weak::new());
+        let mut slot = lock(&SHARED);
+        if let Some(pool) = slot.upgrade() {
+            return Ok(pool);
+        }
+        let pool = Arc::new(Self::new(0)?);
+        *slot = Arc::downgrade(&pool);
+        Ok(pool)
+    }
+
     fn install<R: Send>(&self, f: impl FnOnce() -> R + Send) -> R {
         self.pool.as_ref().expect("present until dropped").install(f)
     }
@@ -130,6 +155,7 @@ impl From<Error> for Failure {
             | Error::Io { .. }
             | Error::Image { .. } => SwellResult::Scene,
             Error::Unstable(_) => SwellResult::Unstable,
+            Error::Cancelled(_) => SwellResult::Cancelled,
             // Keys of a scene (water.cells[0]) are scene errors; the API's own parameters (t,
             // positions_len) are argument errors.
             Error::OutOfRange { key, .. } | Error::Invalid { key, .. } if is_scene_key(key) => SwellResult::Scene,
@@ -273,7 +299,7 @@ pub unsafe extern "C" fn swell_water_from_toml(toml: *const c_char, out: *mut *m
         // SAFETY: checked non-NULL; the caller promises it is writable.
         unsafe { *out = std::ptr::null_mut() };
         let text = unsafe { text("toml", toml)? };
-        let pool = Pool::new(0)?;
+        let pool = Pool::shared()?;
         let water = pool.install(|| Water::from_toml(text, "toml"))?;
         let handle = Box::new(SwellWater { water: Mutex::new(water), pool });
         unsafe { *out = Box::into_raw(handle) };
@@ -294,6 +320,39 @@ pub unsafe extern "C" fn swell_water_destroy(water: *mut SwellWater) {
             drop(unsafe { Box::from_raw(water) });
         }));
     }
+}
+
+/// Sets (or, with a NULL `callback`, removes) the progress callback of long calls on `water`
+/// (see `SwellProgress`): a spring mesh asked minutes ahead reports how far it has got and stops
+/// when the callback returns non-zero. Closed-form and spectral models never call it.
+///
+/// # Safety
+/// `water` is a live handle with no other call on it in progress; `callback`, if not NULL, is
+/// callable with `user_data` from any thread until it is replaced or the handle destroyed.
+#[no_mangle]
+pub unsafe extern "C" fn swell_water_set_progress(
+    water: *mut SwellWater,
+    callback: SwellProgress,
+    user_data: *mut c_void,
+) -> SwellResult {
+    /// The caller's pointer, passed back untouched: the caller promised it may be used from any
+    /// thread.
+    struct UserData(*mut c_void);
+    // SAFETY: swell never dereferences it; the caller's contract covers the threads.
+    unsafe impl Send for UserData {}
+    guard(|| {
+        let water = non_null("water", water)?;
+        let watch = callback.map(|f| {
+            let user = UserData(user_data);
+            Box::new(move |fraction: f64| {
+                let user = &user;
+                // SAFETY: the caller promised `f` is callable with `user_data` (see above).
+                unsafe { f(fraction, user.0) == 0 }
+            }) as swell_lib::world::Watch
+        });
+        lock(&water.water).set_watch(watch);
+        Ok(())
+    })
 }
 
 /// The grid's size: `*rows` vertices along +Z, `*cols` vertices along +X. Position and normal
@@ -390,6 +449,8 @@ pub unsafe extern "C" fn swell_water_foam(
 /// pair, so `heights_len` must be `xz_len / 2` and `xz_len` even. Points are computed in parallel;
 /// a million take well under 2 s on 2 cores (docs/embedding.md). A NaN or infinite coordinate is
 /// refused (`SWELL_RESULT_INVALID_ARGUMENT`, the message naming `xz[k]`) and `heights` left as it was.
+/// A point where there is no water (off a finite patch: a pool, a spring lattice, a river, or
+/// `extent = "patch"`) gets NaN; `swell_water_coverage` tells which points have water.
 ///
 /// # Safety
 /// `water` is a live handle; `xz` points to `xz_len` readable floats, `heights` to `heights_len`
@@ -423,7 +484,8 @@ pub unsafe extern "C" fn swell_water_heights(
 /// Unit normals of the surface above world points at time `t` (s, finite). `xz` holds `xz_len`
 /// floats, pairs (x, z); `normals` receives (x, y, z) per pair, so `normals_len` must be
 /// `3 * xz_len / 2`. Central differences of the height over 2 cm (five height queries a point). A
-/// NaN or infinite coordinate is refused as by `swell_water_heights`.
+/// NaN or infinite coordinate is refused as by `swell_water_heights`; a point with no water gets
+/// three NaN.
 ///
 /// # Safety
 /// `water` is a live handle; `xz` points to `xz_len` readable floats, `normals` to `normals_len`
@@ -454,6 +516,42 @@ pub unsafe extern "C" fn swell_water_normals(
     })
 }
 
+/// Whether there is water above each world point (x, z) (m): `mask` receives 1 or 0 per pair,
+/// so `mask_len` must be `xz_len / 2`. Unbounded water covers every point; a finite patch (a pool,
+/// a spring lattice, a river, or `extent = "patch"`) only its rectangle, edges included. Where it
+/// is 0, `swell_water_heights` and `swell_water_normals` answer NaN. Non-finite coordinates are
+/// refused as by `swell_water_heights`.
+///
+/// # Safety
+/// `water` is a live handle; `xz` points to `xz_len` readable floats, `mask` to `mask_len`
+/// writable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn swell_water_coverage(
+    water: *const SwellWater,
+    xz: *const f32,
+    xz_len: usize,
+    mask: *mut u8,
+    mask_len: usize,
+) -> SwellResult {
+    guard(|| {
+        let w = non_null("water", water)?;
+        check_null("xz", xz)?;
+        check_null("mask", mask)?;
+        if !xz_len.is_multiple_of(2) {
+            return Err(invalid("xz_len", format!("{xz_len}; must be even (pairs of x, z)")));
+        }
+        check_len("mask_len", mask_len, xz_len / 2, "one byte per (x, z) pair: xz_len / 2")?;
+        // SAFETY: lengths checked; the caller promises the buffers hold them.
+        let (points, out) = unsafe { (vec2s(xz, xz_len), std::slice::from_raw_parts_mut(mask, mask_len)) };
+        check_finite_coordinates(points)?;
+        let w = lock(&w.water);
+        for (m, p) in out.iter_mut().zip(points) {
+            *m = u8::from(w.has_water_at(*p));
+        }
+        Ok(())
+    })
+}
+
 /// Parses a scene's TOML text and builds it (water, terrain, meshes) for rendering. On success
 /// `*out` is a new handle for `swell_scene_destroy`; on failure `*out` is set to NULL. Relative
 /// heightmap paths in the text are relative to the working directory.
@@ -469,7 +567,7 @@ pub unsafe extern "C" fn swell_scene_from_toml(toml: *const c_char, out: *mut *m
         let text = unsafe { text("toml", toml)? };
         // Parsing builds the models (validation), which already runs on the pool. One thread per
         // core: images do not depend on the count.
-        let pool = Pool::new(0)?;
+        let pool = Pool::shared()?;
         let world = pool.install(|| World::new(Scene::from_toml(text, "toml")?))?;
         let state = SceneState { world, renderer: Renderer::new(), rgba: Vec::new() };
         unsafe { *out = Box::into_raw(Box::new(SwellScene { inner: Mutex::new(state), pool })) };

@@ -238,3 +238,102 @@ fn the_last_error_escapes_hostile_text_and_cuts_it() {
     let e = last_error();
     assert!(e.len() < 4000 && e.contains("characters in all)"), "{} bytes", e.len());
 }
+
+/// Counts calls through `user_data` and stops the third.
+unsafe extern "C" fn stop_at_the_third(fraction: f64, user_data: *mut c_void) -> c_int {
+    let seen = unsafe { &*user_data.cast::<Mutex<Vec<f64>>>() };
+    let mut seen = lock(seen);
+    seen.push(fraction);
+    c_int::from(seen.len() >= 3)
+}
+
+/// A spring mesh asked far ahead reports progress and stops when the callback says so
+/// (`SWELL_RESULT_CANCELLED`); asked again without it, it finishes to the answer of a handle never
+/// stopped (issue 37).
+#[test]
+fn a_progress_callback_sees_long_calls_and_can_cancel_them() {
+    let mut s = preset("springs").unwrap();
+    s.water.as_mut().unwrap().surface.cells = [8, 8];
+    let text = CString::new(s.to_toml()).unwrap();
+    let (w, plain) = (water(&text), water(&text));
+    let seen = Mutex::new(Vec::<f64>::new());
+    let user = (&seen as *const Mutex<Vec<f64>>).cast_mut().cast::<c_void>();
+    assert_eq!(unsafe { swell_water_set_progress(w, Some(stop_at_the_third), user) }, SwellResult::Ok);
+    // 1000 steps of 0.4 s on a 129² lattice: some 16 parts.
+    let (t, xz) = (400.0, [1.0f32, 2.0]);
+    let mut h = [0.0f32];
+    let r = unsafe { swell_water_heights(w, t, xz.as_ptr(), 2, h.as_mut_ptr(), 1) };
+    assert_eq!(r, SwellResult::Cancelled, "{}", last_error());
+    assert!(last_error().starts_with("cancelled: stopped at the caller's request"), "{}", last_error());
+    assert_eq!(lock(&seen).len(), 3);
+    assert_eq!(unsafe { swell_water_set_progress(w, None, null_mut()) }, SwellResult::Ok);
+    let mut expected = [0.0f32];
+    assert_eq!(unsafe { swell_water_heights(plain, t, xz.as_ptr(), 2, expected.as_mut_ptr(), 1) }, SwellResult::Ok);
+    assert_eq!(unsafe { swell_water_heights(w, t, xz.as_ptr(), 2, h.as_mut_ptr(), 1) }, SwellResult::Ok);
+    assert_eq!(h, expected);
+    assert_eq!(unsafe { swell_water_set_progress(null_mut(), None, null_mut()) }, SwellResult::NullPointer);
+    unsafe { (swell_water_destroy(w), swell_water_destroy(plain)) };
+}
+
+/// Threads of this process, from /proc (Linux).
+fn threads() -> usize {
+    std::fs::read_dir("/proc/self/task").map_or(0, |d| d.count())
+}
+
+/// Many handles share one pool: 40 handles add at most one thread per core (issue 37: each handle
+/// used to start its own pool, 80 threads here). That the pool's threads end with the last handle
+/// is valgrind's check on the C examples (no thread left behind).
+#[test]
+fn forty_handles_share_one_pool() {
+    if !std::path::Path::new("/proc/self/task").is_dir() {
+        return;
+    }
+    // Other tests run beside this one and hold handles of their own: serialise through a lock.
+    let _one_at_a_time = lock(&POOL_TEST);
+    let text = sea_text(4);
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let before = threads();
+    let handles: Vec<_> = (0..40).map(|_| water(&text)).collect();
+    let during = threads();
+    assert!(during <= before + cores + 2, "{before} threads before, {during} with 40 handles ({cores} cores)");
+    let mut h = [0.0f32];
+    for &w in &handles {
+        assert_eq!(
+            unsafe { swell_water_heights(w, 1.0, [0.0f32, 0.0].as_ptr(), 2, h.as_mut_ptr(), 1) },
+            SwellResult::Ok
+        );
+    }
+    for w in handles {
+        unsafe { swell_water_destroy(w) };
+    }
+}
+
+static POOL_TEST: Mutex<()> = Mutex::new(());
+
+/// Off a finite patch there is no water: the mask says 0 and heights and normals are NaN
+/// (issue 37), where an unbounded sea covers every point.
+#[test]
+fn points_off_finite_water_are_masked_and_nan() {
+    for (name, finite) in [("pool", true), ("sea", false)] {
+        let mut s = preset(name).unwrap();
+        s.water.as_mut().unwrap().surface.cells = [8, 8];
+        let text = CString::new(s.to_toml()).unwrap();
+        let w = water(&text);
+        let c = s.water.as_ref().unwrap().surface.center;
+        let xz = [c.x, c.y, 1.0e5, -2.0e4];
+        let (mut mask, mut h, mut n) = ([9u8; 2], [0.0f32; 2], [0.0f32; 6]);
+        assert_eq!(unsafe { swell_water_coverage(w, xz.as_ptr(), 4, mask.as_mut_ptr(), 2) }, SwellResult::Ok);
+        assert_eq!(mask, [1, u8::from(!finite)], "{name}");
+        assert_eq!(unsafe { swell_water_heights(w, 1.0, xz.as_ptr(), 4, h.as_mut_ptr(), 2) }, SwellResult::Ok);
+        assert_eq!(unsafe { swell_water_normals(w, 1.0, xz.as_ptr(), 4, n.as_mut_ptr(), 6) }, SwellResult::Ok);
+        assert!(h[0].is_finite() && n[..3].iter().all(|v| v.is_finite()), "{name}");
+        assert_eq!(h[1].is_nan(), finite, "{name}");
+        assert!(n[3..].iter().all(|v| v.is_nan() == finite), "{name}");
+        assert_eq!(
+            unsafe { swell_water_coverage(w, xz.as_ptr(), 4, mask.as_mut_ptr(), 3) },
+            SwellResult::InvalidArgument
+        );
+        assert!(last_error().starts_with("mask_len: 3; must be 2"), "{}", last_error());
+        unsafe { swell_water_destroy(w) };
+    }
+}

@@ -5,13 +5,15 @@
 //! runs on swell's rayon pool; arrays cross the boundary whole, never element by element.
 
 use std::path::PathBuf;
-use std::sync::{Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard};
 
 use glam::{Vec2, Vec3};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn};
-use pyo3::exceptions::{PyOSError, PyTypeError, PyValueError};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::{PyException, PyOSError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyFloat};
+use pyo3::types::{PyBool, PyDict, PyFloat};
 use swell::render::Renderer;
 use swell::scene::{Scene, MAX_IMAGE_SIDE};
 use swell::world::{sea_stats, World};
@@ -19,13 +21,23 @@ use swell::world::{sea_stats, World};
 /// The name scene texts are known by in error messages (the C API's too).
 const SOURCE: &str = "toml";
 
-/// swell's error as a Python exception: OSError for files, ValueError for everything else, with
-/// the message the CLI prints after `error: `.
+pyo3::create_exception!(
+    swell,
+    Cancelled,
+    PyException,
+    "A long call stopped because the progress callback returned False (`Water.set_progress`). \
+     Asking again continues from where it stopped."
+);
+
+/// swell's error as a Python exception: OSError for files, `Cancelled` for a stop asked by the
+/// progress callback, ValueError for everything else, with the message the CLI prints after
+/// `error: `.
 fn py_err(e: swell::Error) -> PyErr {
     // User text in the message is escaped and cut as the CLI prints it (issue 37).
     let message = swell::error::printable(&e.to_string());
     match e {
         swell::Error::Io { .. } => PyOSError::new_err(message),
+        swell::Error::Cancelled(_) => Cancelled::new_err(message),
         _ => PyValueError::new_err(message),
     }
 }
@@ -45,11 +57,51 @@ fn check_time(t: f64) -> PyResult<()> {
 #[pyclass(frozen, module = "swell")]
 struct Water {
     inner: Mutex<swell::Water>,
+    /// The callable `set_progress` gave, told the progress of long calls.
+    progress: Arc<Mutex<Option<Py<PyAny>>>>,
+    /// The exception that stopped the last long call (Ctrl-C's KeyboardInterrupt, or what the
+    /// progress callback raised), raised in place of swell's `Cancelled`.
+    pending: Arc<Mutex<Option<PyErr>>>,
+}
+
+/// Locks `m`, taking over a lock poisoned by a panic (the state re-derives itself).
+fn locked<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|p| p.into_inner())
 }
 
 impl Water {
+    /// Wraps `water` with a watch on its long calls (issue 37): every 10-50 ms of a long advance
+    /// it takes the GIL, runs Python's signal handlers (so Ctrl-C stops the call within a second,
+    /// though the GIL is released while it computes) and tells the progress callback, if any.
+    fn watched(mut water: swell::Water) -> Self {
+        let (progress, pending) = (Arc::new(Mutex::new(None::<Py<PyAny>>)), Arc::new(Mutex::new(None)));
+        let (callback, stop) = (Arc::clone(&progress), Arc::clone(&pending));
+        water.set_watch(Some(Box::new(move |fraction| {
+            Python::with_gil(|py| {
+                let outcome = py.check_signals().and_then(|()| match locked(&callback).as_ref() {
+                    None => Ok(true),
+                    // Only False stops: a callback that returns nothing goes on.
+                    Some(f) => f.call1(py, (fraction,)).map(|r| !r.bind(py).is(&pyo3::types::PyBool::new(py, false))),
+                });
+                outcome.unwrap_or_else(|e| {
+                    *locked(&stop) = Some(e);
+                    false
+                })
+            })
+        })));
+        Self { inner: Mutex::new(water), progress, pending }
+    }
+
     fn lock(&self) -> MutexGuard<'_, swell::Water> {
-        self.inner.lock().unwrap_or_else(|p| p.into_inner())
+        locked(&self.inner)
+    }
+
+    /// [`py_err`], but a stop caused by a Python exception raises that exception.
+    fn err(&self, e: swell::Error) -> PyErr {
+        match (&e, locked(&self.pending).take()) {
+            (swell::Error::Cancelled(_), Some(raised)) => raised,
+            _ => py_err(e),
+        }
     }
 }
 
@@ -102,6 +154,24 @@ fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, P
     Err(py_err(swell::Error::out_of_range(format!("{name}{at}"), value, "finite world metres")))
 }
 
+/// A caller's `out=` array `name`: a writable, C-contiguous float32 array of `shape`, or a
+/// TypeError / ValueError naming what is wrong.
+fn out_array<'py>(name: &str, a: Bound<'py, PyAny>, shape: [usize; 3]) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let a = a
+        .downcast_into::<PyArray3<f32>>()
+        .map_err(|e| PyTypeError::new_err(format!("{name}: must be a float32 numpy array of shape {shape:?} ({e})")))?;
+    if a.shape() != shape {
+        return Err(PyValueError::new_err(format!("{name}: shape {:?}; must be {shape:?} (rows, cols, 3)", a.shape())));
+    }
+    if !a.is_c_contiguous() {
+        return Err(PyValueError::new_err(format!("{name}: must be C-contiguous (numpy.ascontiguousarray)")));
+    }
+    if a.try_readwrite().is_err() {
+        return Err(PyValueError::new_err(format!("{name}: must be writable and not borrowed elsewhere")));
+    }
+    Ok(a)
+}
+
 /// The (x, z) points of two equally shaped arrays, as f32 (the models' precision).
 fn points(x: &[f64], z: &[f64]) -> Vec<Vec2> {
     x.iter().zip(z).map(|(&x, &z)| Vec2::new(x as f32, z as f32)).collect()
@@ -114,7 +184,7 @@ impl Water {
     #[staticmethod]
     fn from_toml(py: Python<'_>, text: &str) -> PyResult<Self> {
         let water = py.allow_threads(|| swell::Water::from_toml(text, SOURCE)).map_err(py_err)?;
-        Ok(Self { inner: Mutex::new(water) })
+        Ok(Self::watched(water))
     }
 
     /// Reads a scene file (relative heightmap paths are relative to it) and builds its water.
@@ -122,7 +192,7 @@ impl Water {
     fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let water =
             py.allow_threads(|| Scene::load(&path).and_then(|s| swell::Water::from_scene(&s))).map_err(py_err)?;
-        Ok(Self { inner: Mutex::new(water) })
+        Ok(Self::watched(water))
     }
 
     /// Vertices of the grid along +Z (`cells_z + 1`).
@@ -138,25 +208,43 @@ impl Water {
     }
 
     /// Displaced world positions (m) and unit normals of the grid at time `t` (s), each a float32
-    /// array of shape (rows, cols, 3): the numbers `swell export` writes for that time.
+    /// array of shape (rows, cols, 3): the numbers `swell export` writes for that time. With
+    /// `out=(positions, normals)`, two writable C-contiguous float32 arrays of that shape, they
+    /// are filled and returned instead of new arrays (a per-frame loop allocates nothing).
+    #[pyo3(signature = (t, out=None))]
     fn displace<'py>(
         &self,
         py: Python<'py>,
         t: f64,
+        out: Option<(Bound<'py, PyAny>, Bound<'py, PyAny>)>,
     ) -> PyResult<(Bound<'py, PyArray3<f32>>, Bound<'py, PyArray3<f32>>)> {
         check_time(t)?;
-        let (rows, cols, p, n) = py
-            .allow_threads(|| -> swell::Result<_> {
-                let mut w = self.lock();
-                let count = w.vertex_count();
-                let (mut p, mut n) = (vec![Vec3::ZERO; count], vec![Vec3::ZERO; count]);
-                w.displace(t, &mut p, &mut n)?;
-                let flat = |v: Vec<Vec3>| v.into_iter().flat_map(|v| v.to_array()).collect::<Vec<f32>>();
-                Ok((w.rows(), w.cols(), flat(p), flat(n)))
-            })
-            .map_err(py_err)?;
+        let (rows, cols) = {
+            let w = self.lock();
+            (w.rows(), w.cols())
+        };
         let shape = [rows, cols, 3];
-        Ok((p.into_pyarray(py).reshape(shape)?, n.into_pyarray(py).reshape(shape)?))
+        let (p, n) = match out {
+            Some((p, n)) => (out_array("out[0]", p, shape)?, out_array("out[1]", n, shape)?),
+            None => (PyArray3::<f32>::zeros(py, shape, false), PyArray3::<f32>::zeros(py, shape, false)),
+        };
+        if p.is(&n) {
+            return Err(PyValueError::new_err("out: positions and normals must be two different arrays"));
+        }
+        {
+            let (mut pw, mut nw) = (p.readwrite(), n.readwrite());
+            let (ps, ns) = (pw.as_slice_mut()?, nw.as_slice_mut()?);
+            py.allow_threads(|| {
+                // SAFETY: Vec3 is #[repr(C)] {x, y, z: f32} (size 12, align 4), and each slice
+                // holds 3 floats per vertex (its shape was checked).
+                let as_vec3 = |s: &mut [f32]| unsafe {
+                    std::slice::from_raw_parts_mut(s.as_mut_ptr().cast::<Vec3>(), s.len() / 3)
+                };
+                self.lock().displace(t, as_vec3(ps), as_vec3(ns))
+            })
+            .map_err(|e| self.err(e))?;
+        }
+        Ok((p, n))
     }
 
     /// Foam coverage in [0, 1] of every grid vertex at time `t` (s), float32 (rows, cols), or
@@ -170,7 +258,7 @@ impl Water {
                 let has = w.foam(t, &mut out)?;
                 Ok((w.rows(), w.cols(), has.then_some(out)))
             })
-            .map_err(py_err)?;
+            .map_err(|e| self.err(e))?;
         foam.map(|f| f.into_pyarray(py).reshape([rows, cols])).transpose()
     }
 
@@ -193,7 +281,7 @@ impl Water {
                 self.lock().heights_at(t, &pts, &mut h)?;
                 Ok(h.into_iter().map(f64::from).collect::<Vec<f64>>())
             })
-            .map_err(py_err)?;
+            .map_err(|e| self.err(e))?;
         if shape.is_empty() {
             // Two scalars in, a float out (numpy's ufunc convention).
             return Ok(PyFloat::new(py, heights[0]).into_any());
@@ -221,8 +309,41 @@ impl Water {
                 self.lock().normals_at(t, &pts, &mut n)?;
                 Ok(n.into_iter().flat_map(|v| v.to_array().map(f64::from)).collect::<Vec<f64>>())
             })
-            .map_err(py_err)?;
+            .map_err(|e| self.err(e))?;
         Ok(normals.into_pyarray(py).reshape(shape)?)
+    }
+
+    /// Whether there is water above world (x, z) (m): bool with the broadcast shape of `x` and `z`
+    /// (a bool when both are scalars). False off a finite patch, where `height_at` answers NaN and
+    /// `normal_at` NaN vectors; always True for a sea over the whole plane.
+    fn has_water<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>, z: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let (xa, za, shape) = broadcast(py, x, z)?;
+        let pts = points(xa.as_slice()?, za.as_slice()?);
+        let water = self.lock();
+        let covered: Vec<bool> = pts.iter().map(|&p| water.has_water_at(p)).collect();
+        drop(water);
+        if shape.is_empty() {
+            return Ok(PyBool::new(py, covered[0]).to_owned().into_any());
+        }
+        Ok(covered.into_pyarray(py).reshape(shape)?.into_any())
+    }
+
+    /// Sets (or, with None, removes) the callable told the progress of long calls (a spring mesh
+    /// asked minutes ahead): it gets the fraction done in [0, 1) about every 10-50 ms, and
+    /// returning False stops the call, which raises `swell.Cancelled`; an exception it raises
+    /// stops the call and is raised. Ctrl-C stops long calls within a second with or without it.
+    #[pyo3(signature = (callback))]
+    fn set_progress(&self, callback: Option<Bound<'_, PyAny>>) -> PyResult<()> {
+        if let Some(f) = &callback {
+            if !f.is_callable() {
+                let kind = f.get_type().name()?.to_string();
+                return Err(PyTypeError::new_err(format!(
+                    "callback: a {kind} is not callable; give a function of the fraction done, or None"
+                )));
+            }
+        }
+        *locked(&self.progress) = callback.map(Bound::unbind);
+        Ok(())
     }
 
     fn __repr__(&self) -> String {
@@ -292,6 +413,7 @@ fn stats<'py>(py: Python<'py>, text: &str, t: f64) -> PyResult<Bound<'py, PyDict
 fn _swell(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<Water>()?;
+    m.add("Cancelled", m.py().get_type::<Cancelled>())?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(stats, m)?)?;
     Ok(())

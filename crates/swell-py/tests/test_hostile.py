@@ -77,3 +77,91 @@ def test_messages_escape_control_and_bidi_characters_and_are_cut():
     text = str(e.value)
     assert len(text) < 4000, len(text)
     assert "characters in all)" in text, text
+
+
+def springs(lattice=128):
+    """The springs preset's model with a small grid: 0.4 s steps on a lattice x lattice mesh."""
+    return swell.Water.from_toml(
+        f"[water]\nmodel = 'springs'\nsize = [20.0, 20.0]\ncells = [8, 8]\nlattice = [{lattice}, {lattice}]\n"
+    )
+
+
+def test_a_progress_callback_sees_long_calls_and_can_stop_them():
+    water, plain = springs(), springs()
+    seen = []
+
+    def progress(fraction):
+        seen.append(fraction)
+        return len(seen) < 3
+
+    water.set_progress(progress)
+    with pytest.raises(swell.Cancelled, match="^cancelled: stopped at the caller's request"):
+        water.height_at(1.0, 2.0, 400.0)
+    assert len(seen) == 3 and seen[0] == 0.0 and seen[0] < seen[1] < seen[2] < 1.0, seen
+    # An exception raised by the callback stops the call and is raised as it is.
+    water.set_progress(lambda f: 1 / 0)
+    with pytest.raises(ZeroDivisionError):
+        water.height_at(1.0, 2.0, 800.0)
+    # Without a callback the stopped call finishes where it was, to the uninterrupted answer.
+    water.set_progress(None)
+    assert water.height_at(1.0, 2.0, 400.0) == plain.height_at(1.0, 2.0, 400.0)
+    with pytest.raises(TypeError, match="^callback: a int is not callable"):
+        water.set_progress(3)
+
+
+def test_ctrl_c_stops_a_long_call_within_a_second():
+    import _thread
+    import threading
+    import time
+
+    # A million steps on a 257² lattice: minutes of work, released GIL.
+    water = springs(256)
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            water.height_at(0.0, 0.0, 3.0e5)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 0.3 + 1.0
+
+
+def test_displace_fills_out_arrays_without_allocating():
+    water = springs(16)
+    p, n = water.displace(2.0)
+    out = (np.full_like(p, 7.0), np.full_like(n, 7.0))
+    got = water.displace(2.0, out=out)
+    assert got[0] is out[0] and got[1] is out[1]
+    np.testing.assert_array_equal(out[0], p)
+    np.testing.assert_array_equal(out[1], n)
+    with pytest.raises(ValueError, match=r"^out\[0\]: shape \(2, 2, 3\); must be"):
+        water.displace(2.0, out=(np.zeros((2, 2, 3), np.float32), out[1]))
+    with pytest.raises(TypeError, match=r"^out\[1\]: must be a float32 numpy array"):
+        water.displace(2.0, out=(out[0], np.zeros(p.shape, np.float64)))
+    with pytest.raises(ValueError, match=r"^out\[0\]: must be C-contiguous"):
+        water.displace(2.0, out=(np.asfortranarray(out[0]), out[1]))
+    readonly = out[1].copy()
+    readonly.flags.writeable = False
+    with pytest.raises(ValueError, match=r"^out\[1\]: must be writable"):
+        water.displace(2.0, out=(out[0], readonly))
+    with pytest.raises(ValueError, match="two different arrays"):
+        water.displace(2.0, out=(out[0], out[0]))
+
+
+def test_points_off_a_finite_patch_answer_nan_and_has_water_says_why():
+    # The patch is 20 m x 10 m about the origin: (30, 0) is off it. A query there must not answer
+    # the model's formula extended past the pool's edge as if there were water.
+    pool = swell.Water.from_toml(ONLY_WATER.replace("[water]\n", "[water]\nextent = 'patch'\n"))
+    x = np.array([0.0, 9.0, 30.0, -11.0])
+    z = np.array([0.0, 4.0, 0.0, 0.0])
+    assert pool.has_water(x, z).tolist() == [True, True, False, False]
+    assert pool.has_water(0.0, 0.0) is True and pool.has_water(30.0, 0.0) is False
+    h = pool.height_at(x, z, 1.0)
+    assert np.isfinite(h[:2]).all() and np.isnan(h[2:]).all()
+    n = pool.normal_at(x, z, 1.0)
+    assert np.isfinite(n[:2]).all() and np.isnan(n[2:]).all()
+    # A sea over the whole plane has water everywhere, and answers everywhere.
+    sea = swell.Water.from_toml(ONLY_WATER.replace("[water]\n", "[water]\nextent = 'unbounded'\n"))
+    assert sea.has_water(x, z).all()
+    assert np.isfinite(sea.height_at(x, z, 1.0)).all()

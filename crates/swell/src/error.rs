@@ -71,6 +71,10 @@ pub enum Error {
     /// A simulation that left its stable range (e.g. a spring mesh blowing up).
     #[error("simulation unstable: {0}")]
     Unstable(String),
+    /// A long call stopped because its caller asked it to ([`crate::Water::set_watch`]): nothing
+    /// is wrong, and the same call asked again continues from where this one stopped.
+    #[error("cancelled: {0}")]
+    Cancelled(String),
 }
 
 /// `Result` with swell's [`Error`].

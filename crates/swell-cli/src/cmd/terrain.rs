@@ -96,10 +96,7 @@ fn parse_set(kv: &str) -> Result<(String, toml::Value)> {
     let value = match toml::from_str::<toml::Table>(&format!("v = {}", value.trim())) {
         Ok(mut t) if t.len() == 1 => t.remove("v").expect("the table has the key just parsed"),
         Ok(_) => {
-            return Err(Error::invalid(
-                format!("--set {key}"),
-                "the value holds more than one key; give one per --set",
-            ))
+            return Err(Error::invalid(format!("--set {key}"), "the value holds more than one key; give one per --set"))
         }
         Err(_) => toml::Value::String(value.trim().to_string()),
     };

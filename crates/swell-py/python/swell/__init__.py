@@ -3,7 +3,8 @@
 One scene, written in swell's TOML scene format (docs/scene-format.md; only ``[water]`` is
 required for the water queries), answers for any time ``t`` in seconds:
 
-* ``Water.displace(t)``: the displaced grid's positions and normals, float32 ``(rows, cols, 3)``;
+* ``Water.displace(t, out=None)``: the displaced grid's positions and normals, float32
+  ``(rows, cols, 3)``, into caller's arrays with ``out=``;
 * ``Water.foam(t)``: foam coverage per vertex, or None for models without foam;
 * ``Water.height_at(x, z, t)`` and ``Water.normal_at(x, z, t)``: the surface above world points,
   numpy broadcasting, computed in parallel with the GIL released;
@@ -12,9 +13,12 @@ required for the water queries), answers for any time ``t`` in seconds:
 
 Conventions: SI units (metres, seconds), right-handed, +Y up, water at rest at y = 0. Answers
 depend only on the scene and ``t``, never on earlier calls. Bad input raises ``ValueError`` with
-the message the ``swell`` command line prints after ``error:``; unreadable files raise ``OSError``.
+the message the ``swell`` command line prints after ``error:``; unreadable files raise ``OSError``;
+non-finite coordinates raise ``ValueError`` and non-numeric ones ``TypeError``. Long calls (a
+spring mesh asked far ahead) stop on Ctrl-C within a second, and ``Water.set_progress`` is told
+their progress and may stop them (``Cancelled``).
 """
 
-from ._swell import Water, __version__, render, stats
+from ._swell import Cancelled, Water, __version__, render, stats
 
-__all__ = ["Water", "render", "stats", "__version__"]
+__all__ = ["Cancelled", "Water", "render", "stats", "__version__"]

@@ -1,7 +1,7 @@
 """Type stubs of the compiled module (see swell/__init__.py for the overview)."""
 
 from os import PathLike
-from typing import Any, Dict, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -9,6 +9,10 @@ import numpy.typing as npt
 __version__: str
 
 _Coord = Union[float, npt.ArrayLike]
+
+class Cancelled(Exception):
+    """A long call stopped because the progress callback returned False; asking again continues
+    from where it stopped."""
 
 class Water:
     """The water of a scene, built and ready to answer queries about any time ``t`` (s).
@@ -29,10 +33,17 @@ class Water:
     @property
     def cols(self) -> int:
         """Vertices of the grid along +X (``cells_x + 1``)."""
-    def displace(self, t: float) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+    def displace(
+        self, t: float, out: Optional[Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]] = None
+    ) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
         """Displaced world positions (m) and unit normals of the grid at time ``t`` (s), each a
         float32 array of shape ``(rows, cols, 3)``; ``[j, i]`` is the vertex of row j (+Z),
-        column i (+X)."""
+        column i (+X). With ``out=(positions, normals)`` (writable C-contiguous float32 arrays of
+        that shape) they are filled and returned: no allocation per call."""
+    def set_progress(self, callback: Optional[Callable[[float], Optional[bool]]]) -> None:
+        """Sets (None removes) the callable told the fraction done of long calls (a spring mesh
+        asked far ahead) about every 10-50 ms; returning False stops the call with
+        ``Cancelled``. Ctrl-C stops long calls within a second either way."""
     def foam(self, t: float) -> Optional[npt.NDArray[np.float32]]:
         """Foam coverage in [0, 1] per vertex, float32 ``(rows, cols)``, or None without foam."""
     def height_at(self, x: _Coord, z: _Coord, t: float) -> Any:
@@ -40,6 +51,10 @@ class Water:
         broadcast shape of ``x`` and ``z`` (a float for two scalars)."""
     def normal_at(self, x: _Coord, z: _Coord, t: float) -> npt.NDArray[np.float64]:
         """Unit normals above world (x, z) at time ``t``: float64, broadcast shape + ``(3,)``."""
+    def has_water(self, x: _Coord, z: _Coord) -> Any:
+        """Whether there is water above world (x, z): bool, broadcast shape (a bool for two
+        scalars). False off a finite patch, where ``height_at`` answers NaN; True everywhere for
+        a sea over the whole plane."""
 
 def render(text: str, t: float = 0.0, width: Optional[int] = None, height: Optional[int] = None) -> npt.NDArray[np.uint8]:
     """Renders a scene's TOML text at time ``t`` (s) as ``swell render --time t`` does: a

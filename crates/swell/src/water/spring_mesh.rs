@@ -574,6 +574,12 @@ impl WaveModel for SpringMesh {
 
     /// Steps to scene time `t` (simulation time `t + warm_up`) at the fixed time step.
     fn advance(&mut self, t: f64) -> Result<()> {
+        self.advance_partly(t, u64::MAX).map(|_| ())
+    }
+
+    /// Steps towards `t` at most `work / nodes` steps (at least one), so that a caller checks for
+    /// a cancel about every `work` node updates whatever the lattice's size.
+    fn advance_partly(&mut self, t: f64, work: u64) -> Result<u64> {
         if !t.is_finite() {
             return Err(Error::out_of_range("time", t, "finite seconds"));
         }
@@ -594,18 +600,22 @@ impl WaveModel for SpringMesh {
             ));
         }
         let wanted = wanted as u64;
+        let nodes = self.positions().len().max(1) as u64;
+        let budget = (work / nodes).max(1);
         let before = self.steps;
         loop {
             self.apply_due_drops();
-            if self.steps >= wanted {
+            if self.steps >= wanted || self.steps - before >= budget {
                 break;
             }
             self.step()?;
         }
+        // Normals follow the positions at the end of each part: a part may be the last one a
+        // cancelled caller sees, and its state must be drawable.
         if self.steps != before {
             self.update_normals();
         }
-        Ok(())
+        Ok(wanted.saturating_sub(self.steps))
     }
 }
 

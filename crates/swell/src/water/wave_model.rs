@@ -33,6 +33,18 @@ pub trait WaveModel: Send + Sync {
         Ok(())
     }
 
+    /// [`WaveModel::advance`] in parts, for callers that must report progress or stop on request
+    /// ([`crate::Water::set_watch`]): moves towards `t` (s) doing about `work` units of work (one
+    /// unit is one node of one time step) and at least one step, and returns the steps still to go,
+    /// 0 once the state is at `t`. Calling it until it returns 0 leaves exactly the state one
+    /// `advance(t)` leaves, so an interrupted advance costs nothing when it is asked again.
+    ///
+    /// Models that do not step reach `t` at once: the default calls `advance` and returns 0.
+    fn advance_partly(&mut self, t: f64, _work: u64) -> Result<u64> {
+        self.advance(t)?;
+        Ok(0)
+    }
+
     /// Writes foam coverage in [0, 1] for each vertex of `grid` at the time of the last
     /// [`WaveModel::advance`] and returns true, or returns false (the default) if the model has no
     /// foam, leaving `out` untouched.

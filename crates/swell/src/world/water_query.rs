@@ -60,7 +60,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::math::GridSpec;
-use crate::scene::{Scene, WaterPlacement, WaterSpec};
+use crate::scene::{Scene, WaterExtent, WaterPlacement, WaterSpec};
 use crate::water::WaveModel;
 
 /// Horizontal step (world metres) of the central differences [`Water::normals_at`] takes of the
@@ -72,6 +72,14 @@ pub const NORMAL_STEP_M: f32 = 0.02;
 /// nothing against the queries, small enough that two cores share a thousand points evenly.
 const POINTS_PER_TASK: usize = 256;
 
+/// Work (node updates of a stepped model) between two calls of a [`Watch`]: about 10-50 ms of a
+/// spring-mesh step on one core, so a cancel is seen well within a second at any lattice size.
+pub const WORK_PER_WATCH: u64 = 1 << 20;
+
+/// Told how far a long advance has got, as the fraction done in [0, 1); returns `false` to stop
+/// it, which ends the query with [`Error::Cancelled`]. See [`Water::set_watch`].
+pub type Watch = Box<dyn FnMut(f64) -> bool + Send>;
+
 /// The water of a scene, built and ready to answer queries about any time. See the module docs.
 pub struct Water {
     spec: WaterSpec,
@@ -80,6 +88,10 @@ pub struct Water {
     placement: WaterPlacement,
     /// The time the model's state is at, seconds.
     time: f64,
+    /// Progress and cancel of long advances, if the caller asked for them.
+    watch: Option<Watch>,
+    /// Whether the water covers the plane or only its patch ([`Water::has_water_at`]).
+    extent: WaterExtent,
 }
 
 impl std::fmt::Debug for Water {
@@ -131,6 +143,8 @@ impl Water {
             grid: spec.surface.grid()?,
             placement: spec.surface.placement()?,
             time: 0.0,
+            watch: None,
+            extent: spec.surface.extent.unwrap_or_else(|| WaterExtent::default_for(&spec.model, false)),
         })
     }
 
@@ -180,6 +194,15 @@ impl Water {
         self.grid.vertex_count()
     }
 
+    /// Whether there is water above world (x, z) (m): everywhere for unbounded water, inside the
+    /// patch's rectangle (its placement applied, edges included) for a patch. The extent is
+    /// `[water] extent`, else the model's default without terrain: the pool, the spring lattice
+    /// and the river are patches, the FFT ocean and the closed forms cover the plane (a lake's
+    /// terrain is not consulted: give `extent = "patch"` to bound it).
+    pub fn has_water_at(&self, p: Vec2) -> bool {
+        covers(self.extent, &self.placement, &self.grid, p)
+    }
+
     /// The time (s) the model's state is at: the `t` of the last query (0 after building).
     pub fn time(&self) -> f64 {
         self.time
@@ -187,15 +210,47 @@ impl Water {
 
     /// Brings the model to time `t` (s) unless it is already there. Every query calls it; call it
     /// yourself to pay for the state's evaluation at a moment of your choosing.
+    ///
+    /// A stepped model (the spring mesh) asked far ahead may take minutes: with a [`Watch`] set
+    /// ([`Water::set_watch`]) it is told the progress about every [`WORK_PER_WATCH`] node updates
+    /// and may stop the call, which then fails with [`Error::Cancelled`]; asking again continues
+    /// from where it stopped, and the answer is the same as without a stop.
     pub fn advance_to(&mut self, t: f64) -> Result<()> {
         check_time(t)?;
-        if t != self.time {
-            // On failure the state is unknown: rebuild it on the next query rather than trust it.
-            self.time = f64::NAN;
+        if t == self.time {
+            return Ok(());
+        }
+        // On failure the state is unknown: rebuild it on the next query rather than trust it.
+        self.time = f64::NAN;
+        let Some(watch) = self.watch.as_mut() else {
             self.model.advance(t)?;
             self.time = t;
+            return Ok(());
+        };
+        let mut total = None;
+        loop {
+            let left = self.model.advance_partly(t, WORK_PER_WATCH)?;
+            if left == 0 {
+                break;
+            }
+            // Measured from the end of the first part: the fraction starts at 0 and only grows.
+            let first = *total.get_or_insert(left) as f64;
+            if !watch((1.0 - left as f64 / first).clamp(0.0, 1.0)) {
+                return Err(Error::Cancelled(format!(
+                    "stopped at the caller's request on the way to t = {}, {left} steps short; asking again continues from there",
+                    crate::error::Human(t)
+                )));
+            }
         }
+        self.time = t;
         Ok(())
+    }
+
+    /// Sets (or, with `None`, removes) the [`Watch`] told the progress of long advances, which
+    /// may stop them. Closed-form and spectral models never call it: they reach any time in one
+    /// evaluation.
+    pub fn set_watch(&mut self, watch: Option<Watch>) {
+        self.watch = watch;
     }
 
     /// Writes the displaced world position (m) and unit normal of every grid vertex at time `t`
@@ -231,7 +286,7 @@ impl Water {
     }
 
     /// Height (m above the water at rest, y = 0) of the surface above world (x, z) at time `t`
-    /// (s). Covers the whole plane, not only the patch. See [`Water::heights_at`].
+    /// (s); NaN where there is no water ([`Water::has_water_at`]). See [`Water::heights_at`].
     pub fn height_at(&mut self, x: f32, z: f32, t: f64) -> Result<f32> {
         let mut h = [0.0];
         self.heights_at(t, &[Vec2::new(x, z)], &mut h)?;
@@ -240,17 +295,23 @@ impl Water {
 
     /// Heights (m) of the surface above the world points `points` = (x, z) (m) at time `t` (s),
     /// into `out` (same length), in parallel; each point's answer is the one
-    /// [`World::water_height_at`](super::World::water_height_at) gives. A point with a non-finite
-    /// coordinate is refused (naming the first), `out` left as it was. Accuracy is each model's
-    /// [`WaveModel::height_at`]'s.
+    /// [`World::water_height_at`](super::World::water_height_at) gives where there is water, and
+    /// NaN where there is none ([`Water::has_water_at`]: off a finite patch), so that an object
+    /// off the pool is told, not floated on the model's formula extended. A point with a
+    /// non-finite coordinate is refused (naming the first), `out` left as it was. Accuracy is each
+    /// model's [`WaveModel::height_at`]'s.
     pub fn heights_at(&mut self, t: f64, points: &[Vec2], out: &mut [f32]) -> Result<()> {
         check_len("heights", out.len(), points.len(), "one per point")?;
         check_points(points)?;
         self.advance_to(t)?;
-        let (model, placement) = (self.model.as_ref(), self.placement);
+        let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
         out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
             for (h, p) in o.iter_mut().zip(p) {
-                *h = world_height(model, &placement, *p, t);
+                *h = if covers(extent, &placement, grid, *p) {
+                    world_height(model, &placement, *p, t)
+                } else {
+                    f32::NAN
+                };
             }
         });
         Ok(())
@@ -259,18 +320,34 @@ impl Water {
     /// Unit normals of the surface above the world points `points` = (x, z) (m) at time `t` (s),
     /// into `out` (same length), in parallel: central differences of the height over
     /// [`NORMAL_STEP_M`], so five height queries per point. They agree with the grid's analytic
-    /// normals to the differences' accuracy (the slope's change over 2 cm).
+    /// normals to the differences' accuracy (the slope's change over 2 cm). NaN vectors where
+    /// there is no water, as [`Water::heights_at`].
     pub fn normals_at(&mut self, t: f64, points: &[Vec2], out: &mut [Vec3]) -> Result<()> {
         check_len("normals", out.len(), points.len(), "one per point")?;
         check_points(points)?;
         self.advance_to(t)?;
-        let (model, placement) = (self.model.as_ref(), self.placement);
+        let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
         out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
             for (n, p) in o.iter_mut().zip(p) {
-                *n = world_normal(model, &placement, *p, t);
+                *n = if covers(extent, &placement, grid, *p) {
+                    world_normal(model, &placement, *p, t)
+                } else {
+                    Vec3::NAN
+                };
             }
         });
         Ok(())
+    }
+}
+
+/// [`Water::has_water_at`] from its parts, which the parallel queries share.
+fn covers(extent: WaterExtent, placement: &WaterPlacement, grid: &GridSpec, p: Vec2) -> bool {
+    match extent {
+        WaterExtent::Unbounded => true,
+        WaterExtent::Patch => {
+            let l = placement.to_local_xz(p);
+            l.cmpge(grid.origin).all() && l.cmple(grid.origin + grid.size).all()
+        }
     }
 }
 
@@ -330,7 +407,11 @@ mod tests {
                 let mut h = [0.0; 2];
                 water.heights_at(t, &pts, &mut h).unwrap();
                 for (k, q) in pts.iter().enumerate() {
-                    assert_eq!(Some(h[k]), world.water_height_at(q.x, q.y), "{} t = {t}", p.name);
+                    if water.has_water_at(*q) {
+                        assert_eq!(Some(h[k]), world.water_height_at(q.x, q.y), "{} t = {t}", p.name);
+                    } else {
+                        assert!(h[k].is_nan(), "{} t = {t}: off the patch, {}", p.name, h[k]);
+                    }
                 }
             }
         }
@@ -348,7 +429,8 @@ mod tests {
                 let (p, n) = grid_of(w, t);
                 let mut foam = vec![0.0; w.vertex_count()];
                 let has = w.foam(t, &mut foam).unwrap();
-                (h, p, n, has.then_some(foam))
+                // Bits, so that the NaN of points off a finite patch compare equal.
+                (h.iter().map(|h| h.to_bits()).collect::<Vec<_>>(), p, n, has.then_some(foam))
             };
             let mut fresh = Water::from_scene(&scene).unwrap();
             let expected = ask(&mut fresh, 2.0);
@@ -359,6 +441,73 @@ mod tests {
             assert_eq!(ask(&mut used, 2.0), expected, "{name}");
             assert_eq!(used.time(), 2.0);
         }
+    }
+
+    /// A long spring-mesh advance tells its progress, stops when the watch says so, and asked
+    /// again continues to the same answer as an advance that was never stopped (issue 37).
+    #[test]
+    fn a_watch_sees_progress_and_can_cancel_without_changing_the_answer() {
+        use std::sync::{Arc, Mutex};
+        // 1000 steps of 0.4 s on a 129² lattice: about 16 parts of WORK_PER_WATCH.
+        let scene = small("springs", 16);
+        let t = 400.0;
+        let mut plain = Water::from_scene(&scene).unwrap();
+        let expected = grid_of(&mut plain, t);
+        let mut watched = Water::from_scene(&scene).unwrap();
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let log = Arc::clone(&seen);
+        watched.set_watch(Some(Box::new(move |f| {
+            let mut log = log.lock().unwrap();
+            log.push(f);
+            log.len() < 3
+        })));
+        let n = watched.vertex_count();
+        let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+        let e = watched.displace(t, &mut p, &mut q).unwrap_err();
+        assert!(matches!(e, Error::Cancelled(_)), "{e}");
+        assert!(e.to_string().starts_with("cancelled: stopped at the caller's request on the way to t = 400"), "{e}");
+        let fractions = seen.lock().unwrap().clone();
+        assert_eq!(fractions.len(), 3);
+        assert_eq!(fractions[0], 0.0);
+        assert!(fractions.windows(2).all(|w| w[1] > w[0] && w[1] < 1.0), "{fractions:?}");
+        // Asked again, with the watch always saying go on: the stopped advance finishes.
+        watched.set_watch(Some(Box::new(|_| true)));
+        assert_eq!(grid_of(&mut watched, t), expected);
+        watched.set_watch(None);
+        assert_eq!(grid_of(&mut watched, t), expected);
+        // Closed-form models never call the watch.
+        let mut sea = Water::from_scene(&small("sea", 8)).unwrap();
+        sea.set_watch(Some(Box::new(|_| panic!("a closed-form model has nothing to wait for"))));
+        grid_of(&mut sea, 1.0e5);
+    }
+
+    /// Off a finite patch there is no water: NaN heights and normals, told by `has_water_at`
+    /// (issue 37), where the models' formulas would answer calm or extended water.
+    #[test]
+    fn points_off_finite_water_answer_nan() {
+        for (name, finite) in [("pool", true), ("springs", true), ("river", true), ("ocean", false), ("sea", false)] {
+            let mut water = Water::from_scene(&small(name, 8)).unwrap();
+            let g = *water.grid();
+            let inside = water.placement().to_world(glam::Vec3::new(
+                g.origin.x + 0.5 * g.size.x,
+                0.0,
+                g.origin.y + 0.5 * g.size.y,
+            ));
+            let (inside, far) = (Vec2::new(inside.x, inside.z), Vec2::new(1.0e5, -3.0e4));
+            assert!(water.has_water_at(inside), "{name}");
+            assert_eq!(water.has_water_at(far), !finite, "{name}");
+            let (mut h, mut n) = ([0.0; 2], [Vec3::ZERO; 2]);
+            water.heights_at(1.0, &[inside, far], &mut h).unwrap();
+            water.normals_at(1.0, &[inside, far], &mut n).unwrap();
+            assert!(h[0].is_finite() && n[0].is_finite(), "{name}");
+            assert_eq!(h[1].is_nan(), finite, "{name}: {}", h[1]);
+            assert_eq!(n[1].is_nan(), finite, "{name}: {}", n[1]);
+        }
+        // A closed-form model bounded by `extent = "patch"`.
+        let mut scene = small("sea", 8);
+        scene.water.as_mut().unwrap().surface.extent = Some(WaterExtent::Patch);
+        let water = Water::from_scene(&scene).unwrap();
+        assert!(!water.has_water_at(Vec2::new(1.0e5, 0.0)));
     }
 
     #[test]
