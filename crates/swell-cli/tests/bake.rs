@@ -55,19 +55,22 @@ fn a_killed_bake_resumed_equals_an_uninterrupted_one_byte_for_byte() {
     }
     child.kill().unwrap();
     child.wait().unwrap();
-    let partial = files(&killed);
+    let mut partial = files(&killed);
     assert!(!partial.contains_key("disp_0079.exr"), "the bake finished before it was killed");
+    // SIGKILL leaves the killed bake's lock; its process is gone, so the resume removes it.
+    assert!(partial.remove("bake.lock").is_some(), "no lock while baking: {:?}", partial.keys());
 
     let mut resume = args(&killed);
     resume.push("--resume".into());
     let o = Command::new(SWELL).args(&resume).output().unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("already complete"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("removed the stale lock"), "{}", stderr(&o));
     let o = Command::new(SWELL).args(args(&whole)).output().unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
 
     let (resumed, whole) = (files(&killed), files(&whole));
-    assert_eq!(whole.len(), 1 + 80 * 4);
+    assert_eq!(whole.len(), 1 + 80 * 5, "bake.json; per frame 2 EXR, 2 PNG and the record");
     assert_eq!(resumed.keys().collect::<Vec<_>>(), whole.keys().collect::<Vec<_>>());
     for (name, bytes) in &whole {
         assert!(&resumed[name] == bytes, "{name} differs after kill + resume");
@@ -103,7 +106,7 @@ fn three_shards_together_equal_the_whole_bake() {
     let o = swell(&["bake", "--scene", scene, "--frames", "5..14", "--fps", "30", "--out", whole.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let (sharded, whole) = (files(&sharded), files(&whole));
-    assert_eq!(whole.len(), 1 + 10 * 2);
+    assert_eq!(whole.len(), 1 + 10 * 3, "bake.json; per frame 2 EXR and the record");
     assert!(sharded == whole, "shards differ from the whole bake");
 }
 
@@ -277,7 +280,7 @@ fn shard_auto_takes_the_slurm_array_tasks_and_says_so() {
     let o = swell(&["bake", "--scene", scene, "--frames", "2..9", "--quiet", "--out", whole.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let (farm, whole) = (files(&farm), files(&whole));
-    assert_eq!(whole.len(), 1 + 8 * 2);
+    assert_eq!(whole.len(), 1 + 8 * 3, "bake.json; per frame 2 EXR and the record");
     assert!(farm == whole, "the three array tasks differ from the whole bake");
 
     // Kubernetes: the index, with the count from auto/N or SWELL_SHARD_COUNT.

@@ -45,7 +45,7 @@ fn killed_resumed_sharded_and_single_frame_ocean_bakes_equal_the_whole_one_foam_
     let slow = ["--png", "16", "--png-range", "4", "--exr-compression", "zip", "--threads", "1"];
     run(bake_args(&scene, "0..59", &dir("whole"), &slow));
     let whole = files(&dir("whole"));
-    assert_eq!(whole.len(), 1 + 60 * 6, "disp, normal and foam, EXR and PNG, per frame");
+    assert_eq!(whole.len(), 1 + 60 * 7, "disp, normal and foam, EXR and PNG, and the record, per frame");
 
     let mut child = Command::new(SWELL).args(bake_args(&scene, "0..59", &dir("killed"), &slow)).spawn().unwrap();
     let start = Instant::now();
@@ -158,9 +158,10 @@ fn tile_is_refused_with_the_reason_where_the_water_does_not_repeat() {
 #[test]
 fn a_loop_too_short_for_the_sea_warns_on_stderr() {
     let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("out");
+    // Two bakes, so two directories: a directory holds one bake.
     let bake = |extra: &str| {
         let scene = write_scene(tmp.path(), "l.toml", &format!("{OCEAN}{extra}"));
+        let out = tmp.path().join(format!("out-{}", extra.len()));
         Command::new(SWELL).args(bake_args(&scene, "0..0", &out, &[])).output().unwrap()
     };
     let o = bake("loop_period = 2.0\n");

@@ -66,7 +66,8 @@ fn whole_bake(tmp: &Path, scene: &Path) -> BTreeMap<String, Vec<u8>> {
     let o = bake(scene, &whole, false).output().unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     let whole = files(&whole);
-    assert_eq!(whole.len(), 1 + FRAME_COUNT * 4);
+    // Per frame: disp and normal, EXR and PNG, and the frame's record check_NNNN.json.
+    assert_eq!(whole.len(), 1 + FRAME_COUNT * 5);
     whole
 }
 

@@ -46,11 +46,17 @@ pub fn run(a: BakeArgs) -> Result<()> {
         let mut world = World::new(scene)?;
         super::advance_with_progress(&mut world, f64::from(settings.frames.first) / settings.fps, World::advance)?;
         settings.loop_period_s = model_loop_period(&world);
+        // Takes the directory's lock for this shard (held until `bake` is dropped, also when a
+        // signal unwinds out of it) and refuses a directory that holds or bakes something else.
         let bake = Bake::prepare(&mut world, &a.out, settings)?;
+        for note in bake.notes() {
+            eprintln!("note: {}", swell::error::printable(note));
+        }
         let todo = bake.frames_to_bake().len();
         if bake.skipped() > 0 {
             eprintln!("{} frames already complete in {}, skipped", bake.skipped(), a.out.display());
         }
+        report_damaged(bake.damaged());
         let bar = if a.quiet { ProgressBar::hidden() } else { progress_bar(todo as u64, "baking") };
         let start = Instant::now();
         // issue 10: SIGINT/SIGTERM stop the bake after the frames in flight; --resume finishes it.
@@ -82,6 +88,23 @@ pub fn run(a: BakeArgs) -> Result<()> {
         );
         Ok(())
     })
+}
+
+/// Most damaged frames named one per line; the rest are counted.
+const DAMAGED_LINES: usize = 10;
+
+/// Tells which frames `--resume` found damaged and bakes again, and why.
+fn report_damaged(damaged: &[(u32, String)]) {
+    if damaged.is_empty() {
+        return;
+    }
+    eprintln!("{} frames failed their check and are baked again:", damaged.len());
+    for (frame, why) in damaged.iter().take(DAMAGED_LINES) {
+        eprintln!("  frame {frame}: {}", swell::error::printable(why));
+    }
+    if damaged.len() > DAMAGED_LINES {
+        eprintln!("  ... and {} more", damaged.len() - DAMAGED_LINES);
+    }
 }
 
 /// A progress bar on stderr with elapsed time and ETA (drawn only when stderr is a terminal).

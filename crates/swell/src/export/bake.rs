@@ -13,10 +13,20 @@
 //!
 //! Pixel (i, j) is grid vertex (i, j) (see [`super::write_exr_rgb`] for orientation).
 //!
+//! | `check_{k:04}.json` | the frame's record: each file's size and XXH64 checksum, written after them ([`super::bake_frame_record`]) |
+//!
 //! Long bakes: every file is written atomically, so a file that exists is complete, and a frame
-//! is complete when all its files exist; [`BakeSettings::resume`] skips complete frames, and a
+//! is complete when its record exists and every file matches it; [`BakeSettings::resume`] skips
+//! complete frames and bakes the others again (a missing, empty, truncated or changed file), and a
 //! [`Shard`] bakes every N-th frame, so batch systems can split a bake over machines. The output
 //! depends only on the scene and the settings, never on threads, shards or interruptions.
+//!
+//! Bakes never lie about what a directory holds (issue 37): a directory holds one bake. A bake
+//! takes its shard's lock ([`super::bake_lock`]) before it looks at anything, so a second bake of
+//! something else into a directory in use is refused, naming the holder, while the shards of one
+//! bake share it. A `bake.json` of another bake (or one that is empty, not JSON or cut short) is
+//! refused with or without `resume`, naming what differs, and so are frame files without a
+//! `bake.json`: they are never adopted, and never silently mixed with another bake's.
 //!
 //! Speed: frames are simulated in order (time-stepped models need that) in batches, and each
 //! batch is encoded and written in parallel while the next is simulated.
@@ -45,6 +55,9 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::bake_checksum::{hex, xxh64};
+use super::bake_frame_record::{file_record, is_record_name, record_name, verify_frame, write_record, FrameRecord};
+use super::bake_lock::BakeLock;
 use super::bake_manifest::{
     BakeAxes, BakeFoam, BakeGrid, BakeManifest, BakeMap, BakePng, BakeUnits, BAKE_MANIFEST_VERSION,
 };
@@ -74,7 +87,9 @@ pub struct BakeSettings {
     pub fps: f64,
     /// Which frames this run bakes. Default: all.
     pub shard: Shard,
-    /// Skip frames whose files all exist, after checking `bake.json` describes the same bake.
+    /// Skip frames that are complete (their record `check_{k:04}.json` exists and every file has
+    /// the size and checksum it records), after checking `bake.json` describes the same bake;
+    /// every other frame of the shard is baked again.
     pub resume: bool,
     /// Also write PNG maps of this many bits per sample (8 or 16).
     pub png_bits: Option<u8>,
@@ -164,16 +179,23 @@ impl MapKind {
     }
 }
 
-/// A bake ready to run: settings checked, directory and `bake.json` written, frames to do known.
+/// A bake ready to run: settings checked, directory locked, `bake.json` written, frames to do known.
+///
+/// It holds the directory's lock for its shard until it is dropped.
 pub struct Bake {
     dir: PathBuf,
     settings: BakeSettings,
     manifest: BakeManifest,
+    /// XXH64 of `bake.json`'s bytes, hex: what frame records and locks name the bake by.
+    bake_json_xxh64: String,
     maps: Vec<MapKind>,
     grid: GridSpec,
     png_range_m: f32,
     todo: Vec<u32>,
     skipped: usize,
+    damaged: Vec<(u32, String)>,
+    notes: Vec<String>,
+    lock: BakeLock,
 }
 
 /// The fields of one frame, captured from the world so the world can move on.
@@ -201,11 +223,16 @@ struct FrameFields {
 
 impl Bake {
     /// Checks `settings`, moves `world` to the first frame of the range (which fixes whether there
-    /// is foam and the automatic PNG range, identically for every shard), creates `dir` and
-    /// writes `dir/bake.json`, and lists the frames still to bake.
+    /// is foam and the automatic PNG range, identically for every shard), creates `dir`, takes
+    /// its lock for this shard ([`BakeLock`]), checks what `dir` already holds, writes
+    /// `dir/bake.json`, and lists the frames still to bake.
     ///
-    /// Nothing is written if anything is wrong; with `resume`, a `bake.json` from different
-    /// settings is an error.
+    /// Refused, with nothing written (beyond creating `dir` when it did not exist): a directory
+    /// whose lock another live process holds for this shard, or that a live process of another
+    /// bake is using; a `bake.json` describing another bake, or that is empty, not JSON or cut
+    /// short, with or without `resume`; frame files (maps or records) without a `bake.json`.
+    /// Without `resume` every frame of the shard is baked (again); with it, only the frames that
+    /// are not complete ([`BakeSettings::resume`]).
     pub fn prepare(world: &mut World, dir: &Path, settings: BakeSettings) -> Result<Self> {
         settings.validate()?;
         let spec = world
@@ -244,23 +271,78 @@ impl Bake {
         if dir.exists() && !dir.is_dir() {
             return Err(Error::invalid("--out", format!("{} exists and is not a directory", dir.display())));
         }
-        let manifest_path = dir.join("bake.json");
-        if settings.resume {
-            check_same_bake(&manifest_path, &manifest)?;
-        }
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         let json = manifest_json(&manifest);
-        write_atomically(&manifest_path, |out| out.write_all(&json).map_err(|e| Error::io(&manifest_path, e)))?;
+        let bake_json_xxh64 = hex(xxh64(&json));
+        // The lock first: what the directory holds cannot change under a bake that holds it
+        // (another bake would be refused), so the checks below stay true.
+        let mut notes = Vec::new();
+        let lock = BakeLock::acquire(dir, settings.shard, &bake_json_xxh64, &mut notes)?;
+        let manifest_path = dir.join("bake.json");
+        if check_directory(dir, &manifest_path, &json, settings.resume)? {
+            write_atomically(&manifest_path, |out| out.write_all(&json).map_err(|e| Error::io(&manifest_path, e)))?;
+        }
 
-        let mut bake = Bake { dir: dir.into(), settings, manifest, maps, grid, png_range_m, todo: vec![], skipped: 0 };
-        for frame in bake.settings.shard.frames(bake.settings.frames) {
-            if bake.settings.resume && bake.frame_files(frame).iter().all(|p| p.is_file()) {
-                bake.skipped += 1;
-            } else {
-                bake.todo.push(frame);
+        let mut bake = Bake {
+            dir: dir.into(),
+            settings,
+            manifest,
+            bake_json_xxh64,
+            maps,
+            grid,
+            png_range_m,
+            todo: vec![],
+            skipped: 0,
+            damaged: vec![],
+            notes,
+            lock,
+        };
+        let frames: Vec<u32> = bake.settings.shard.frames(bake.settings.frames).collect();
+        if !bake.settings.resume {
+            bake.todo = frames;
+            return Ok(bake);
+        }
+        // Reading every file back is most of a resume's cost: frames in parallel, order kept.
+        let checked: Vec<(u32, Result<(), String>)> =
+            frames.into_par_iter().map(|frame| (frame, bake.check_frame(frame))).collect();
+        for (frame, state) in checked {
+            match state {
+                Ok(()) => bake.skipped += 1,
+                Err(why) => {
+                    // A frame with no trace at all is simply not baked yet; one with files or a
+                    // record that fail the check was damaged, and the caller hears of it.
+                    let mut traces = bake.frame_files(frame).into_iter().chain([bake.record_path(frame)]);
+                    if traces.any(|p| p.exists()) {
+                        bake.damaged.push((frame, why));
+                    }
+                    bake.todo.push(frame);
+                }
             }
         }
         Ok(bake)
+    }
+
+    /// `Ok` if `frame` is complete: its record belongs to this bake and every file matches it.
+    fn check_frame(&self, frame: u32) -> Result<(), String> {
+        verify_frame(&self.dir, frame, &self.frame_file_names(frame), &self.bake_json_xxh64)
+    }
+
+    /// Frames of this shard that had files or a record from before but failed the check of
+    /// `resume` (a file missing, empty, truncated or changed, a record missing or from another
+    /// bake), each with the first reason in words; they are among [`Bake::frames_to_bake`].
+    pub fn damaged(&self) -> &[(u32, String)] {
+        &self.damaged
+    }
+
+    /// What preparing the bake did that the user should hear of: stale locks removed, a lock taken
+    /// over from another host. One sentence each.
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+
+    /// The lock this bake holds on its directory and shard.
+    pub fn lock(&self) -> &BakeLock {
+        &self.lock
     }
 
     /// The manifest written as `bake.json`.
@@ -283,21 +365,26 @@ impl Bake {
         map_size(&self.grid, self.settings.tile)
     }
 
-    /// Every file of `frame`, under its final name.
+    /// Every map file of `frame`, under its final name (EXR, then PNG), without its record.
     pub fn frame_files(&self, frame: u32) -> Vec<PathBuf> {
-        let mut files: Vec<PathBuf> = self.maps.iter().map(|m| self.file(*m, frame, "exr")).collect();
-        if self.settings.png_bits.is_some() {
-            files.extend(self.maps.iter().map(|m| self.file(*m, frame, "png")));
-        }
-        files
+        self.frame_file_names(frame).into_iter().map(|n| self.dir.join(n)).collect()
     }
 
-    fn file(&self, map: MapKind, frame: u32, ext: &str) -> PathBuf {
-        self.dir.join(format!("{}_{frame:04}.{ext}", map.name()))
+    /// The record of `frame`, `check_{frame:04}.json`, written once all its files are.
+    pub fn record_path(&self, frame: u32) -> PathBuf {
+        self.dir.join(record_name(frame))
+    }
+
+    fn frame_file_names(&self, frame: u32) -> Vec<String> {
+        let mut names: Vec<String> = self.maps.iter().map(|m| file_name(*m, frame, "exr")).collect();
+        if self.settings.png_bits.is_some() {
+            names.extend(self.maps.iter().map(|m| file_name(*m, frame, "png")));
+        }
+        names
     }
 
     /// Bakes the remaining frames; `on_frame(k)` is called (from any thread) once all files of
-    /// frame k are written. `world` must be the one given to [`Bake::prepare`].
+    /// frame k and then its record are written. `world` must be the one given to [`Bake::prepare`].
     pub fn run(&self, world: &mut World, on_frame: &(dyn Fn(u32) + Sync)) -> Result<()> {
         if self.todo.is_empty() {
             return Ok(());
@@ -368,7 +455,9 @@ impl Bake {
         Ok(())
     }
 
-    /// Writes every file of one frame, the files in parallel, each atomically.
+    /// Writes every file of one frame, the files in parallel, each atomically; reads each back
+    /// for its size and checksum (what reached the disk, not what was meant to), then writes the
+    /// frame's record, atomically, last.
     fn write_frame(&self, f: &FrameFields) -> Result<()> {
         let (w, h) = self.map_size();
         let compression = self.settings.compression;
@@ -376,15 +465,22 @@ impl Bake {
         if self.settings.png_bits.is_some() {
             jobs.extend(self.maps.iter().map(|&m| (m, true)));
         }
-        jobs.par_iter().try_for_each(|&(map, png)| {
-            let path = self.file(map, f.frame, if png { "png" } else { "exr" });
-            match (map, png) {
-                (MapKind::Disp, false) => write_exr_rgb(&path, w, h, &f.disp, compression),
-                (MapKind::Normal, false) => write_exr_rgb(&path, w, h, &f.normal, compression),
-                (MapKind::Foam, false) => write_exr_gray(&path, w, h, &f.foam, compression),
-                (_, true) => self.write_png(&path, map, f),
-            }
-        })
+        let files = jobs
+            .par_iter()
+            .map(|&(map, png)| {
+                let name = file_name(map, f.frame, if png { "png" } else { "exr" });
+                let path = self.dir.join(&name);
+                match (map, png) {
+                    (MapKind::Disp, false) => write_exr_rgb(&path, w, h, &f.disp, compression),
+                    (MapKind::Normal, false) => write_exr_rgb(&path, w, h, &f.normal, compression),
+                    (MapKind::Foam, false) => write_exr_gray(&path, w, h, &f.foam, compression),
+                    (_, true) => self.write_png(&path, map, f),
+                }?;
+                file_record(&self.dir, &name)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let record = FrameRecord { frame: f.frame, bake_json_xxh64: self.bake_json_xxh64.clone(), files };
+        write_record(&self.dir, &record)
     }
 
     fn write_png(&self, path: &Path, map: MapKind, f: &FrameFields) -> Result<()> {
@@ -404,6 +500,24 @@ impl Bake {
             MapKind::Foam => write_png_map(path, w, h, 1, bits, &f.foam),
         }
     }
+}
+
+/// The file name of `map` for `frame` with extension `ext`: `disp_0042.exr`.
+fn file_name(map: MapKind, frame: u32, ext: &str) -> String {
+    format!("{}_{frame:04}.{ext}", map.name())
+}
+
+/// Whether `name` is the name of a bake's per-frame file, a map (`disp_`, `normal_` or `foam_`,
+/// at least four digits, `.exr` or `.png`) or a record ([`is_record_name`]): the files that must
+/// not be in a directory without `bake.json`.
+fn is_frame_file_name(name: &str) -> bool {
+    let map = [MapKind::Disp, MapKind::Normal, MapKind::Foam].iter().any(|m| {
+        name.strip_prefix(m.name())
+            .and_then(|r| r.strip_prefix('_'))
+            .and_then(|r| r.strip_suffix(".exr").or_else(|| r.strip_suffix(".png")))
+            .is_some_and(|d| d.len() >= 4 && d.bytes().all(|c| c.is_ascii_digit()))
+    });
+    map || is_record_name(name)
 }
 
 /// Refuses `--tile` unless the water repeats over the bake's extent: its spatial period (m, if it
@@ -568,8 +682,9 @@ fn foam_model() -> BakeFoam {
     }
 }
 
-/// The text of `bake.json`. It is compared byte for byte on `--resume`, so it must be a pure
-/// function of the manifest.
+/// The text of `bake.json`. It is compared byte for byte with a directory's `bake.json`, and its
+/// checksum names the bake in frame records and locks, so it must be a pure function of the
+/// manifest.
 fn manifest_json(manifest: &BakeManifest) -> Vec<u8> {
     let value = shortest_floats(serde_json::to_value(manifest).expect("the manifest always serialises"));
     let mut text = serde_json::to_vec_pretty(&value).expect("a JSON value always serialises");
@@ -601,48 +716,124 @@ fn shortest_floats(v: serde_json::Value) -> serde_json::Value {
     }
 }
 
-/// With `--resume`, refuses to continue a bake made with other settings.
-fn check_same_bake(path: &Path, manifest: &BakeManifest) -> Result<()> {
-    let old = match std::fs::read(path) {
-        Ok(bytes) => bytes,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
-        Err(e) => return Err(Error::io(path, e)),
-    };
-    let new = manifest_json(manifest);
-    if old != new {
-        // Both texts go through the same parser, so only real differences show.
-        let parse = |text: &[u8]| {
-            serde_json::from_slice::<serde_json::Value>(text)
-                .map_err(|e| Error::Parse { path: path.display().to_string(), message: e.to_string() })
-        };
-        let (old, new) = (parse(&old)?, parse(&new)?);
-        let version = |v: &serde_json::Value| v.get("manifest_version").and_then(|n| n.as_u64()).unwrap_or(1);
-        if version(&old) != version(&new) {
+/// What `dir` already holds, against the bake about to start (whose `bake.json` text is `json`):
+/// `Ok(true)` if `bake.json` is to be written (there is none), `Ok(false)` if the same one is
+/// there. Refused: a `bake.json` that is not this bake's, with or without `resume` (the message
+/// names the real cause: empty, not JSON, cut short, not a manifest, another version, or the keys
+/// that differ), and frame files with no `bake.json` (they belong to no known bake).
+fn check_directory(dir: &Path, path: &Path, json: &[u8], resume: bool) -> Result<bool> {
+    let key = if resume { "--resume" } else { "--out" };
+    let advice = "bake into a new directory, or delete the old bake's files first";
+    let mut looked_twice = false;
+    let old = loop {
+        match std::fs::read(path) {
+            Ok(bytes) => break bytes,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(Error::io(path, e)),
+        }
+        {
+            let entries = std::fs::read_dir(dir).map_err(|e| Error::io(dir, e))?;
+            let mut stray: Vec<String> = entries
+                .filter_map(|e| e.ok())
+                .filter_map(|e| e.file_name().to_str().map(str::to_string))
+                .filter(|n| is_frame_file_name(n))
+                .collect();
+            if stray.is_empty() {
+                return Ok(true);
+            }
+            // Another shard of this bake may have written bake.json and then frames since the
+            // read above (bake.json always comes first): look again once before refusing.
+            if !looked_twice && path.exists() {
+                looked_twice = true;
+                continue;
+            }
+            stray.sort();
+            let shown = stray.iter().take(3).cloned().collect::<Vec<_>>().join(", ");
+            let more = if stray.len() > 3 { format!(", ... {} files in all", stray.len()) } else { String::new() };
             return Err(Error::invalid(
-                "--resume",
+                key,
                 format!(
-                    "{} has manifest_version {}, this swell writes {}: it was baked by another version of swell; \
-                     bake into a new directory, or drop --resume to overwrite",
-                    path.display(),
-                    version(&old),
-                    version(&new)
+                    "{} holds frame files ({shown}{more}) but no bake.json, so nothing says which bake they \
+                     belong to: they are neither resumed nor baked over; {advice}",
+                    dir.display()
                 ),
             ));
         }
-        let mut keys = Vec::new();
-        differences(&old, &new, String::new(), &mut keys);
-        let keys: Vec<String> = keys.iter().map(|k| format!("`{k}`")).collect();
-        let verb = if keys.len() == 1 { "differs" } else { "differ" };
-        return Err(Error::invalid(
-            "--resume",
-            format!(
-                "{} describes a different bake ({} {verb}); bake into a new directory, or drop --resume to overwrite",
-                path.display(),
-                keys.join(", ")
-            ),
+    };
+    if old == json {
+        return Ok(false);
+    }
+    match manifest_mismatch(&old, json) {
+        // The same values written otherwise (reformatted by hand): this bake, in this swell's text.
+        None => Ok(true),
+        Some(what) => Err(Error::invalid(key, format!("{} {what}; {advice}", path.display()))),
+    }
+}
+
+/// Why the bytes `old` of a directory's `bake.json` are not the manifest `new` this bake writes,
+/// in words that follow the file's path: the real cause first (empty, not JSON, cut short, not a
+/// bake manifest, another `manifest_version`), else every key path that differs; `None` when the
+/// two hold the same values.
+fn manifest_mismatch(old: &[u8], new: &[u8]) -> Option<String> {
+    use serde_json::error::Category;
+    if old.iter().all(u8::is_ascii_whitespace) {
+        return Some(format!("is empty ({} bytes): there is no manifest in it to compare with", old.len()));
+    }
+    let old: serde_json::Value = match serde_json::from_slice(old) {
+        Ok(v) => v,
+        Err(e) if e.classify() == Category::Eof => {
+            return Some(format!(
+                "is cut short: its JSON ends at line {} column {} before it is complete ({} bytes)",
+                e.line(),
+                e.column(),
+                old.len()
+            ))
+        }
+        Err(e) => return Some(format!("is not JSON ({e})")),
+    };
+    let new: serde_json::Value = serde_json::from_slice(new).expect("this swell's manifest is JSON");
+    let Some(fields) = old.as_object() else {
+        return Some(format!("is not a bake manifest: it holds a JSON {}, not an object", json_kind(&old)));
+    };
+    // Every manifest_version had these keys; without them it is some other JSON file.
+    if !["swell_version", "maps", "frames"].iter().all(|k| fields.contains_key(*k)) {
+        return Some(
+            "is not a bake manifest: it lacks `swell_version`, `maps` or `frames`, which every bake.json has".into(),
+        );
+    }
+    let new_version = new.get("manifest_version").and_then(|n| n.as_u64()).unwrap_or(1);
+    let old_version = match fields.get("manifest_version") {
+        None => 1,
+        Some(v) => match v.as_u64() {
+            Some(n) => n,
+            None => return Some(format!("has manifest_version = {v}, which is not a whole number")),
+        },
+    };
+    if old_version != new_version {
+        return Some(format!(
+            "has manifest_version {old_version}, this swell writes {new_version}: it was baked by another version of swell"
         ));
     }
-    Ok(())
+    let mut keys = Vec::new();
+    differences(&old, &new, String::new(), &mut keys);
+    if keys.is_empty() {
+        return None;
+    }
+    let keys: Vec<String> = keys.iter().map(|k| format!("`{k}`")).collect();
+    let verb = if keys.len() == 1 { "differs" } else { "differ" };
+    Some(format!("describes a different bake ({} {verb})", keys.join(", ")))
+}
+
+/// `null`, `boolean`, `number`, `string` or `array`: what a JSON value is, for messages.
+fn json_kind(v: &serde_json::Value) -> &'static str {
+    match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "boolean",
+        serde_json::Value::Number(_) => "number",
+        serde_json::Value::String(_) => "string",
+        serde_json::Value::Array(_) => "array",
+        serde_json::Value::Object(_) => "object",
+    }
 }
 
 /// Appends to `out` the key path of every difference between two JSON values, in key order,
@@ -680,6 +871,35 @@ mod tests {
         out.clear();
         differences(&a, &a, String::new(), &mut out);
         assert!(out.is_empty());
+    }
+
+    #[test]
+    fn a_foreign_bake_json_is_named_by_its_real_cause() {
+        let new = br#"{"manifest_version": 2, "swell_version": "1", "maps": [], "frames": [0, 3], "fps": 24.0}"#;
+        let why = |old: &[u8]| manifest_mismatch(old, new).unwrap_or_else(|| "the same".into());
+        assert!(why(b"").starts_with("is empty (0 bytes)"), "{}", why(b""));
+        assert!(why(b" \n").starts_with("is empty (2 bytes)"));
+        assert!(why(br#"{"manifest_version": 2, "swell"#).starts_with("is cut short"), "{}", why(b"{"));
+        assert!(why(b"hello").starts_with("is not JSON"), "{}", why(b"hello"));
+        assert!(why(b"[1, 2]").contains("a JSON array, not an object"));
+        assert!(why(b"{}").contains("lacks `swell_version`"));
+        let old_version = br#"{"swell_version": "0.1", "maps": [], "frames": [0, 3], "fps": 24.0}"#;
+        assert!(why(old_version).starts_with("has manifest_version 1, this swell writes 2"));
+        let other = br#"{"manifest_version": 2, "swell_version": "1", "maps": [], "frames": [0, 9], "fps": 30.0}"#;
+        assert_eq!(why(other), "describes a different bake (`fps`, `frames` differ)");
+        // The same values in other text are the same bake.
+        let spaced = br#"{ "manifest_version": 2, "fps": 24.0, "swell_version": "1", "maps": [], "frames": [0,3] }"#;
+        assert_eq!(manifest_mismatch(spaced, new), None);
+    }
+
+    #[test]
+    fn frame_file_names_are_recognised() {
+        for name in ["disp_0000.exr", "normal_12345.png", "foam_0042.exr", "check_0007.json"] {
+            assert!(is_frame_file_name(name), "{name}");
+        }
+        for name in ["bake.json", "bake.lock", "disp_000.exr", "disp_0000.tif", "notes.txt", ".swell-x.tmp"] {
+            assert!(!is_frame_file_name(name), "{name}");
+        }
     }
 
     #[test]
