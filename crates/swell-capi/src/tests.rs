@@ -337,3 +337,37 @@ fn points_off_finite_water_are_masked_and_nan() {
         unsafe { swell_water_destroy(w) };
     }
 }
+
+/// Issue 37: a scene naming a FIFO that no process writes to (a heightmap, a water texture) is
+/// refused at once with `SwellResult::Scene` and a message naming the FIFO; a plain open would
+/// block the caller for good, beyond the reach of any signal handler of the host program.
+#[cfg(unix)]
+#[test]
+fn a_fifo_without_a_writer_is_an_error_at_once_not_a_hang() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("map.png");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let sea = "version = 1\n[camera]\neye = [0.0, 6.0, 14.0]\ntarget = [0.0, 0.0, 0.0]\n[render]\nwidth = 16\n\
+               height = 9\n[water]\nmodel = 'sines'\ncells = [8, 8]\n[[water.waves]]\namplitude = 0.3\n\
+               wavelength = 8.0\nspeed = 3.0\ndirection = [1.0, 0.0]\n";
+    let f = fifo.display();
+    let scenes = [
+        format!("{sea}[terrain]\ngenerator = 'heightmap'\npath = '{f}'\nheight_scale = 2.0\n"),
+        format!("{sea}[water.material]\ntexture = '{f}'\n"),
+    ];
+    for text in scenes {
+        // On another thread, so that a hang fails the test instead of blocking the run.
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let toml = CString::new(text).unwrap();
+            let mut scene = null_mut();
+            let r = unsafe { swell_scene_from_toml(toml.as_ptr(), &mut scene) };
+            tx.send((r, scene.is_null(), last_error())).unwrap();
+        });
+        let (r, null, message) = rx.recv_timeout(std::time::Duration::from_secs(30)).expect("blocked on the FIFO");
+        assert_eq!(r, SwellResult::Scene, "{message}");
+        assert!(null);
+        assert!(message.contains(&format!("{f}: is a FIFO or pipe that no process writes to")), "{message}");
+    }
+}

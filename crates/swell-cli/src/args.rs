@@ -52,7 +52,10 @@ pub struct SceneSource {
     /// A built-in scene (see `swell presets`).
     #[arg(long, value_name = "NAME")]
     pub preset: Option<String>,
-    /// A scene file (TOML, see docs/scene-format.md).
+    /// A scene file (TOML, see docs/scene-format.md), or `-` to read it from standard input
+    /// (relative paths in it then resolve against the current directory). A pipe with a writer
+    /// (`<(...)`, /dev/stdin) reads like a file; a FIFO that no process writes to is refused at
+    /// once, never waited on.
     #[arg(long, value_name = "FILE")]
     pub scene: Option<PathBuf>,
 }

@@ -12,9 +12,9 @@
 //! ## Cargo features
 //!
 //! Both on by default; without them (`default-features = false`) the crate is the simulation core:
-//! `math`, `spectrum`, `water`, `terrain` (the generators), `mesh`, `error` and `limits`, depending
-//! on glam, rayon, serde, rand, rustfft and thiserror only, none of image, exr, gif, toml,
-//! serde_json or tempfile.
+//! `math`, `spectrum`, `water`, `terrain` (the generators), `mesh`, `error`, `limits` and the input
+//! opening of `io`, depending on glam, rayon, serde, rand, rustfft and thiserror only (and libc on
+//! unix, which rand already brings), none of image, exr, gif, toml, serde_json or tempfile.
 //!
 //! - **`render`**: scenes (`scene`, scene files in TOML), the world built from them (`world`, with
 //!   `Water`), `shading` with image textures, the CPU rasterizer `raster`, the passes in `render`,
@@ -67,7 +67,6 @@ pub mod closed_set;
 pub mod error;
 #[cfg(feature = "export")]
 pub mod export;
-#[cfg(feature = "render")]
 pub mod io;
 pub mod limits;
 pub mod math;

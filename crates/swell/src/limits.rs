@@ -16,8 +16,8 @@
 //!
 //! The per-key limits live beside the keys they limit (`MAX_IMAGE_SIDE` in `scene/render_settings.rs`,
 //! `MAX_GERSTNER_WAVES` in `water/gerstner.rs`...); `docs/ROBUSTNESS.md` lists them all with their
-//! reasons. This module is the bottom layer: it imports nothing of swell but its error type, so
-//! every layer may use it.
+//! reasons. This module is the bottom layer: it imports nothing of swell but its error type and the
+//! input opening of `io` (for [`read_text_limited`]), so every layer may use it.
 
 use crate::error::{Error, Result};
 
@@ -173,12 +173,10 @@ pub fn check_scene_text(text: &str, source: &str) -> Result<()> {
 
 /// Reads the UTF-8 text file `path`, refusing one over `max_bytes` (named `limit_name` in the
 /// error) after reading at most one byte past it, so `/dev/zero` or a huge download given as a
-/// small text file cannot exhaust memory.
+/// small text file cannot exhaust memory. Opened by [`crate::io::read_input`], so a FIFO with no
+/// writer is refused at once rather than waited on, and a directory is refused as one.
 pub fn read_text_limited(path: &std::path::Path, max_bytes: u64, limit_name: &str) -> Result<String> {
-    use std::io::Read;
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-    let mut bytes = Vec::new();
-    file.take(max_bytes.saturating_add(1)).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+    let bytes = crate::io::read_input(path, max_bytes)?;
     let parse_err = |message: String| Error::Parse { path: path.display().to_string(), message };
     if bytes.len() as u64 > max_bytes {
         return Err(parse_err(format!("over the file-size limit of {max_bytes} bytes ({limit_name})")));

@@ -3,6 +3,7 @@
 mod bench;
 mod presets;
 mod render;
+mod scene_input;
 mod terrain;
 // issue 8: meshes and map bakes.
 mod bake;
@@ -49,7 +50,7 @@ pub fn load_scene(source: &SceneSource) -> Result<Scene> {
 fn read_scene(source: &SceneSource) -> Result<Scene> {
     match (&source.preset, &source.scene) {
         (Some(name), _) => preset(name),
-        (None, Some(path)) => Scene::load(path),
+        (None, Some(path)) => scene_input::load(path),
         (None, None) => unreachable!("clap requires one of --preset and --scene"),
     }
 }

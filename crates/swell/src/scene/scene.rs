@@ -142,28 +142,36 @@ impl Scene {
     /// huge file or `/dev/zero`), nesting is bounded before parsing ([`Scene::from_toml`]), and
     /// relative file paths in the scene (heightmaps, water textures) are resolved against the
     /// scene file's directory, made absolute so that the scene still finds them once saved
-    /// elsewhere (the viewer's "save as"). Errors name the file.
+    /// elsewhere (the viewer's "save as"). The file is opened by [`crate::io::read_input`]: a FIFO
+    /// that no process writes to is refused at once instead of blocking, while a pipe with a
+    /// writer (`<(...)`, `/dev/stdin`) is read as a file. Errors name the file.
     pub fn load(path: &std::path::Path) -> Result<Self> {
-        use std::io::Read;
+        let bytes = crate::io::read_input(path, crate::limits::MAX_SCENE_BYTES)?;
+        let dir = path.parent().unwrap_or(std::path::Path::new(""));
+        Scene::from_bytes(bytes, &path.display().to_string(), dir)
+    }
+
+    /// The scene in `bytes`, read from `source` (a file path, or the CLI's standard input), with
+    /// relative file paths resolved against `dir` (the current directory if `dir` is empty) and
+    /// made absolute: what [`Scene::load`] does once it has read the file, for a caller that read
+    /// the text itself. Refuses more than [`crate::limits::MAX_SCENE_BYTES`] (a reader that stops
+    /// one byte past the limit hands all it read, and is refused here) and text that is not UTF-8.
+    pub fn from_bytes(bytes: Vec<u8>, source: &str, dir: &std::path::Path) -> Result<Self> {
         let max = crate::limits::MAX_SCENE_BYTES;
-        let source = path.display().to_string();
-        let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-        let mut bytes = Vec::new();
-        file.take(max + 1).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
         if bytes.len() as u64 > max {
             return Err(Error::Parse {
-                path: source,
+                path: source.into(),
                 message: format!("over the scene-file limit of {max} bytes (MAX_SCENE_BYTES)"),
             });
         }
         let text = String::from_utf8(bytes).map_err(|_| Error::Parse {
-            path: source.clone(),
+            path: source.into(),
             message: "not UTF-8 text (a scene file is TOML)".into(),
         })?;
-        let mut scene = Scene::from_toml(&text, &source)?;
-        let dir = path.parent().unwrap_or(std::path::Path::new(""));
-        // `absolute` only fails for an empty path or without a current directory; the relative
-        // directory then still resolves the paths for this process.
+        let mut scene = Scene::from_toml(&text, source)?;
+        let dir = if dir.as_os_str().is_empty() { std::path::Path::new(".") } else { dir };
+        // `absolute` only fails without a current directory; the relative directory then still
+        // resolves the paths for this process.
         let dir = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
         scene.resolve_paths(&dir);
         Ok(scene)

@@ -35,10 +35,16 @@ impl Texture {
         Ok(Self { width, height, texels })
     }
 
-    /// Reads a PNG or JPEG file (sRGB-encoded, as image files are) into linear RGB.
+    /// Reads a PNG or JPEG file (sRGB-encoded, as image files are) into linear RGB. Opened by
+    /// [`crate::io::open_seekable`]: a FIFO with no writer is refused at once instead of
+    /// blocking, and a pipe with one is read into memory first, since decoding seeks.
     pub fn from_file(path: &Path) -> Result<Self> {
-        let img = image::ImageReader::open(path)
-            .map_err(|e| Error::io(path, e))?
+        let mut reader = image::ImageReader::new(crate::io::open_seekable(path)?);
+        // As `ImageReader::open` does: the extension's format unless the content says otherwise.
+        if let Ok(format) = image::ImageFormat::from_path(path) {
+            reader.set_format(format);
+        }
+        let img = reader
             .with_guessed_format()
             .map_err(|e| Error::io(path, e))?
             .decode()

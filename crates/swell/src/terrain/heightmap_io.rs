@@ -15,7 +15,6 @@
 //! extent = [500.0, 500.0]
 //! ```
 
-use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 use glam::Vec2;
@@ -24,7 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use super::height_field::{HeightField, MAX_TERRAIN_SIZE};
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
-use crate::io::write_atomically;
+use crate::io::{open_seekable, read_input, write_atomically};
 
 /// Most bytes a heightmap may decode to: 4097 x 4097 pixels of 16-bit grey with alpha. Images are
 /// refused from their header, before any pixel is decoded, so a small file claiming huge
@@ -93,16 +92,27 @@ pub fn write_heightmap(path: &Path, field: &HeightField) -> Result<HeightmapSide
     Ok(sidecar)
 }
 
-/// Reads the sidecar of heightmap `png`, or `None` if there is no such file.
+/// Most bytes of a heightmap sidecar read: 64 KiB. One holds three keys (under 200 bytes); the
+/// bound keeps `/dev/zero` or a stray large file named `map.png.toml` from filling memory.
+const MAX_SIDECAR_BYTES: u64 = 64 << 10;
+
+/// Reads the sidecar of heightmap `png`, or `None` if there is no such file. It is opened by
+/// [`crate::io::read_input`]: a FIFO with no writer is refused at once, never waited on.
 pub fn read_sidecar(png: &Path) -> Result<Option<HeightmapSidecar>> {
     let side = sidecar_path(png);
-    let text = match std::fs::read_to_string(&side) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(Error::io(&side, e)),
+    let bytes = match read_input(&side, MAX_SIDECAR_BYTES) {
+        Ok(b) => b,
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(e),
     };
-    let s: HeightmapSidecar = toml::from_str(&text)
-        .map_err(|e| Error::Parse { path: side.display().to_string(), message: e.to_string().trim_end().into() })?;
+    let parse_err = |message: String| Error::Parse { path: side.display().to_string(), message };
+    if bytes.len() as u64 > MAX_SIDECAR_BYTES {
+        return Err(parse_err(format!(
+            "over the heightmap-sidecar limit of {MAX_SIDECAR_BYTES} bytes (MAX_SIDECAR_BYTES)"
+        )));
+    }
+    let text = String::from_utf8(bytes).map_err(|_| parse_err("not UTF-8 text (a sidecar is TOML)".into()))?;
+    let s: HeightmapSidecar = toml::from_str(&text).map_err(|e| parse_err(e.to_string().trim_end().into()))?;
     s.validate(&side.display().to_string())?;
     Ok(Some(s))
 }
@@ -111,10 +121,11 @@ pub fn read_sidecar(png: &Path) -> Result<Option<HeightmapSidecar>> {
 /// the image's width and height. Alpha, if any, is ignored.
 ///
 /// Refuses, before decoding any pixel, images wider or taller than [`MAX_TERRAIN_SIZE`] or whose
-/// decoded size would pass [`MAX_HEIGHTMAP_BYTES`]; refuses colour images.
+/// decoded size would pass [`MAX_HEIGHTMAP_BYTES`]; refuses colour images. Opened by
+/// [`crate::io::open_seekable`]: a FIFO with no writer is refused at once, and a pipe with one
+/// (`<(...)`) is read into memory first, since decoding seeks.
 pub fn read_grey_png(path: &Path) -> Result<(u32, u32, Vec<f32>)> {
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-    read_grey_png_from(BufReader::new(file), path)
+    read_grey_png_from(open_seekable(path)?, path)
 }
 
 /// [`read_grey_png`] from bytes in memory; `name` is what errors call them.
