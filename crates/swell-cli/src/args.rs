@@ -202,8 +202,8 @@ pub struct ExportArgs {
     /// Output file; with --frames, frame k goes to STEM_kkkk.EXT beside it.
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
-    /// Mesh format: obj, gltf (JSON + .bin) or glb (default: from the --out extension; given with an
-    /// extension, the two must agree).
+    /// Mesh format: obj, gltf (JSON + .bin) or glb (default: from the --out extension; given with
+    /// an .obj, .gltf or .glb extension, the two must agree; any other extension takes it as given).
     #[arg(long, value_name = "FORMAT")]
     pub format: Option<String>,
     /// Simulation time in seconds (one file), in [-1e7, 1e7].

@@ -154,7 +154,7 @@ fn bad_frame_ranges_and_unwritable_outputs_are_clear_errors_and_write_nothing() 
     let o = swell(&["bake", "--scene", scene, "--frames", "0..2", "--out", file.to_str().unwrap()]);
     assert!(!o.status.success() && stderr(&o).contains("not a directory"), "{}", stderr(&o));
     let o = swell(&["export", "--scene", scene, "--out", under_file.join("x.glb").to_str().unwrap()]);
-    assert!(!o.status.success() && stderr(&o).contains("does not exist"), "{}", stderr(&o));
+    assert!(!o.status.success() && stderr(&o).contains("is a file, not a directory"), "{}", stderr(&o));
     assert_eq!(std::fs::read(&file).unwrap(), b"x");
 }
 

@@ -24,6 +24,11 @@ fn export_refuses_a_format_its_extension_contradicts() {
         swell(&["export", "--preset", "pool", "--format", "obj", "--out", dir.path().join("mesh").to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(std::fs::read_to_string(dir.path().join("mesh")).unwrap().contains("\nv "));
+    // An extension that names no format leaves the choice to --format.
+    let o =
+        swell(&["export", "--preset", "pool", "--format", "glb", "--out", dir.path().join("x.mesh").to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(&std::fs::read(dir.path().join("x.mesh")).unwrap()[..4], b"glTF");
 }
 
 #[test]

@@ -123,9 +123,10 @@ fn resolve_format(a: &ExportArgs) -> Result<Format> {
     let name = given.to_ascii_lowercase();
     let format =
         parse(&name).ok_or_else(|| Error::invalid("--format", format!("`{given}` is not one of obj, gltf, glb")))?;
-    // Issue 37: `--format obj --out x.glb` wrote OBJ text into x.glb. An extension must agree.
+    // Issue 37: `--format obj --out x.glb` wrote OBJ text into x.glb. An extension that names a
+    // format must name this one; another extension (`.mesh`) leaves the choice to --format.
     match ext {
-        Some(e) if e != name => Err(Error::invalid(
+        Some(e) if e != name && parse(&e).is_some() => Err(Error::invalid(
             "--out",
             format!("{} ends in .{e} but --format is {name}: end it in .{name} or drop --format", a.out.display()),
         )),
