@@ -55,7 +55,10 @@ fn scene_text(b: &mut Bytes) -> (String, bool) {
     let (body, tiles) = match b.byte() % 7 {
         0 => (format!("model = \"gerstner\"\nsize = [{s}.0, {s}.0]\n", s = b.pick(&[4, 20, 200])), false),
         1 => (
-            format!("model = \"noise\"\nsize = [20.0, 20.0]\namplitude = {}\nseed = {seed}\n", b.pick(&["0.1", "0.6", "2.0"])),
+            format!(
+                "model = \"noise\"\nsize = [20.0, 20.0]\namplitude = {}\nseed = {seed}\n",
+                b.pick(&["0.1", "0.6", "2.0"])
+            ),
             false,
         ),
         2 => {
@@ -75,8 +78,11 @@ fn scene_text(b: &mut Bytes) -> (String, bool) {
         3 => (format!("model = \"wave-set\"\nsize = [20.0, 20.0]\ncount = {}\nseed = {seed}\n", b.range(1, 6)), false),
         4 => ("model = \"radial\"\nsize = [2.0, 2.0]\n".to_string(), false),
         // Time-stepped: every shard and resume integrates from t = 0.
-        5 => ("model = \"springs\"\nsize = [4.0, 4.0]\nlattice = [8, 8]\nspacing = 0.5\ntime_step = 0.4\nwarm_up = 1.0\n"
-            .to_string(), false),
+        5 => (
+            "model = \"springs\"\nsize = [4.0, 4.0]\nlattice = [8, 8]\nspacing = 0.5\ntime_step = 0.4\nwarm_up = 1.0\n"
+                .to_string(),
+            false,
+        ),
         _ => ("model = \"tessendorf\"\nsize = [20.0, 20.0]\nloop_period = 10.0\n".to_string(), false),
     };
     (format!("[water]\n{body}{cells}"), tiles)
