@@ -78,6 +78,14 @@ int main(void) {
                point_normals[0], point_normals[1], point_normals[2]);
     }
 
+    /* An engine 10^6 m from its origin asks in double precision: the FFT ocean repeats every
+     * patch_size (64 m), so the buoy 15625 patches east floats exactly as the one at home. */
+    const double far_points[4] = {3.0, -4.0, 3.0 + 64.0 * 15625.0, -4.0};
+    double far_heights[2];
+    r = swell_water_heights_f64(water, 1.0, far_points, 4, far_heights, 2);
+    if (r != SWELL_RESULT_OK) return fail("swell_water_heights_f64", r);
+    printf("far buoy %.9g %.9g\n", far_heights[0], far_heights[1]);
+
     /* Errors are codes with a message naming the parameter, its value and the valid range. */
     r = swell_water_displace(water, 0.0, positions, 3 * n - 1, normals, 3 * n);
     printf("short buffer -> %d: %s\n", (int)r, swell_last_error_message());

@@ -147,6 +147,8 @@ enum SwellResult swell_water_foam(struct SwellWater *water,
 // pair, so `heights_len` must be `xz_len / 2` and `xz_len` even. Points are computed in parallel;
 // a million take well under 2 s on 2 cores (docs/embedding.md). A NaN or infinite coordinate is
 // refused (`SWELL_RESULT_INVALID_ARGUMENT`, the message naming `xz[k]`) and `heights` left as it was.
+// A point where there is no water (off a finite patch: a pool, a spring lattice, a river, or
+// `extent = "patch"`) gets NaN; `swell_water_coverage` tells which points have water.
 //
 // # Safety
 // `water` is a live handle; `xz` points to `xz_len` readable floats, `heights` to `heights_len`
@@ -161,7 +163,8 @@ enum SwellResult swell_water_heights(struct SwellWater *water,
 // Unit normals of the surface above world points at time `t` (s, finite). `xz` holds `xz_len`
 // floats, pairs (x, z); `normals` receives (x, y, z) per pair, so `normals_len` must be
 // `3 * xz_len / 2`. Central differences of the height over 2 cm (five height queries a point). A
-// NaN or infinite coordinate is refused as by `swell_water_heights`.
+// NaN or infinite coordinate is refused as by `swell_water_heights`; a point with no water gets
+// three NaN.
 //
 // # Safety
 // `water` is a live handle; `xz` points to `xz_len` readable floats, `normals` to `normals_len`
@@ -172,6 +175,66 @@ enum SwellResult swell_water_normals(struct SwellWater *water,
                                      size_t xz_len,
                                      float *normals,
                                      size_t normals_len);
+
+// Whether there is water above each world point (x, z) (m): `mask` receives 1 or 0 per pair,
+// so `mask_len` must be `xz_len / 2`. Unbounded water covers every point; a finite patch (a pool,
+// a spring lattice, a river, or `extent = "patch"`) only its rectangle, edges included. Where it
+// is 0, `swell_water_heights` and `swell_water_normals` answer NaN. Non-finite coordinates are
+// refused as by `swell_water_heights`.
+//
+// # Safety
+// `water` is a live handle; `xz` points to `xz_len` readable floats, `mask` to `mask_len`
+// writable bytes.
+enum SwellResult swell_water_coverage(const struct SwellWater *water,
+                                      const float *xz,
+                                      size_t xz_len,
+                                      uint8_t *mask,
+                                      size_t mask_len);
+
+// `swell_water_heights` in double precision, for engines whose coordinates run far from the
+// origin (at 10^6 m a float moves in 6 cm steps): `xz` holds `xz_len` doubles, pairs (x, z) in
+// metres; `heights` receives one double per pair (`heights_len` = `xz_len / 2`). The point is
+// carried into the water's frame in double precision and, for water that repeats in space (the
+// FFT ocean), whole periods are taken off before the model (which computes in float) is asked,
+// so such water answers at 10^6 m as precisely as near the origin; other models are asked at the
+// point narrowed to float. Non-finite coordinates are refused and points with no water get NaN,
+// as by `swell_water_heights`.
+//
+// # Safety
+// `water` is a live handle; `xz` points to `xz_len` readable doubles, `heights` to
+// `heights_len` writable doubles, not overlapping.
+enum SwellResult swell_water_heights_f64(struct SwellWater *water,
+                                         double t,
+                                         const double *xz,
+                                         size_t xz_len,
+                                         double *heights,
+                                         size_t heights_len);
+
+// `swell_water_normals` in double precision, as `swell_water_heights_f64`: `xz` holds `xz_len`
+// doubles, pairs (x, z); `normals` receives (x, y, z) doubles per pair (`normals_len` =
+// `3 * xz_len / 2`), three NaN where there is no water.
+//
+// # Safety
+// `water` is a live handle; `xz` points to `xz_len` readable doubles, `normals` to
+// `normals_len` writable doubles, not overlapping.
+enum SwellResult swell_water_normals_f64(struct SwellWater *water,
+                                         double t,
+                                         const double *xz,
+                                         size_t xz_len,
+                                         double *normals,
+                                         size_t normals_len);
+
+// `swell_water_coverage` of points given in double precision (`xz`: `xz_len` doubles, pairs
+// (x, z) in metres; `mask`: `mask_len` = `xz_len / 2` bytes, 1 where there is water).
+//
+// # Safety
+// `water` is a live handle; `xz` points to `xz_len` readable doubles, `mask` to `mask_len`
+// writable bytes.
+enum SwellResult swell_water_coverage_f64(const struct SwellWater *water,
+                                          const double *xz,
+                                          size_t xz_len,
+                                          uint8_t *mask,
+                                          size_t mask_len);
 
 // Parses a scene's TOML text and builds it (water, terrain, meshes) for rendering. On success
 // `*out` is a new handle for `swell_scene_destroy`; on failure `*out` is set to NULL. Relative

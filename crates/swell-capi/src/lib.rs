@@ -23,7 +23,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Mutex, MutexGuard, Weak};
 use std::thread::JoinHandle;
 
-use glam::{Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec2, Vec3};
 use swell_lib::render::Renderer;
 use swell_lib::scene::Scene;
 use swell_lib::world::World;
@@ -248,11 +248,11 @@ fn check_len(name: &str, len: usize, expected: usize, what: &str) -> Result<(), 
     }
 }
 
-/// Refuses the first non-finite coordinate of `xz`, naming it `xz[k]` (issue 37): a NaN buoy
-/// must be told with [`SwellResult::InvalidArgument`], not answered with calm water.
-fn check_finite_coordinates(xz: &[Vec2]) -> Result<(), Failure> {
-    let flat = xz.iter().flat_map(|p| [p.x, p.y]);
-    match flat.enumerate().find(|(_, c)| !c.is_finite()) {
+/// Refuses the first non-finite coordinate of the flattened pairs (x0, z0, x1, z1, ...), naming
+/// it `xz[k]` (issue 37): a NaN buoy must be told with [`SwellResult::InvalidArgument`], not
+/// answered with calm water.
+fn check_finite_coordinates<C: Into<f64>>(flat: impl Iterator<Item = C>) -> Result<(), Failure> {
+    match flat.map(Into::into).enumerate().find(|(_, c)| !c.is_finite()) {
         None => Ok(()),
         Some((k, c)) => Err(invalid(&format!("xz[{k}]"), format!("{c} is not a finite coordinate (world metres)"))),
     }
@@ -269,6 +269,29 @@ unsafe fn vec3s<'a>(p: *mut f32, len: usize) -> &'a mut [Vec3] {
 unsafe fn vec2s<'a>(p: *const f32, len: usize) -> &'a [Vec2] {
     // SAFETY: Vec2 is #[repr(C)] { x, y: f32 } (size 8, align 4); the caller promises `len` floats.
     unsafe { std::slice::from_raw_parts(p.cast::<Vec2>(), len / 2) }
+}
+
+/// A caller's double buffer of `len` doubles as `len / 2` (x, z) points.
+unsafe fn dvec2s<'a>(p: *const f64, len: usize) -> &'a [DVec2] {
+    // SAFETY: DVec2 is #[repr(C)] { x, y: f64 } (size 16, align 8, like double[2]); the caller
+    // promises `len` doubles, aligned as C aligns a double.
+    unsafe { std::slice::from_raw_parts(p.cast::<DVec2>(), len / 2) }
+}
+
+/// A caller's double buffer of `len` doubles as `len / 3` vectors (`len` is checked first).
+unsafe fn dvec3s<'a>(p: *mut f64, len: usize) -> &'a mut [DVec3] {
+    // SAFETY: DVec3 is #[repr(C)] { x, y, z: f64 } (size 24, align 8, like double[3]); the caller
+    // promises `len` writable doubles.
+    unsafe { std::slice::from_raw_parts_mut(p.cast::<DVec3>(), len / 3) }
+}
+
+/// Refuses an odd count of coordinates: they come in (x, z) pairs.
+fn check_pairs(xz_len: usize) -> Result<(), Failure> {
+    if xz_len.is_multiple_of(2) {
+        Ok(())
+    } else {
+        Err(invalid("xz_len", format!("{xz_len}; must be even (pairs of x, z)")))
+    }
 }
 
 /// The version of swell, e.g. "0.1.0": a static NUL-terminated string, never freed.
@@ -469,13 +492,11 @@ pub unsafe extern "C" fn swell_water_heights(
         check_null("xz", xz)?;
         check_null("heights", heights)?;
         check_time(t)?;
-        if !xz_len.is_multiple_of(2) {
-            return Err(invalid("xz_len", format!("{xz_len}; must be even (pairs of x, z)")));
-        }
+        check_pairs(xz_len)?;
         check_len("heights_len", heights_len, xz_len / 2, "one height per (x, z) pair: xz_len / 2")?;
         // SAFETY: lengths checked; the caller promises the buffers hold them.
         let (points, out) = unsafe { (vec2s(xz, xz_len), std::slice::from_raw_parts_mut(heights, heights_len)) };
-        check_finite_coordinates(points)?;
+        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
         w.pool.install(|| lock(&w.water).heights_at(t, points, out))?;
         Ok(())
     })
@@ -504,13 +525,11 @@ pub unsafe extern "C" fn swell_water_normals(
         check_null("xz", xz)?;
         check_null("normals", normals)?;
         check_time(t)?;
-        if !xz_len.is_multiple_of(2) {
-            return Err(invalid("xz_len", format!("{xz_len}; must be even (pairs of x, z)")));
-        }
+        check_pairs(xz_len)?;
         check_len("normals_len", normals_len, 3 * (xz_len / 2), "3 floats per (x, z) pair: 3 * xz_len / 2")?;
         // SAFETY: lengths checked; the caller promises the buffers hold them.
         let (points, out) = unsafe { (vec2s(xz, xz_len), vec3s(normals, normals_len)) };
-        check_finite_coordinates(points)?;
+        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
         w.pool.install(|| lock(&w.water).normals_at(t, points, out))?;
         Ok(())
     })
@@ -537,16 +556,112 @@ pub unsafe extern "C" fn swell_water_coverage(
         let w = non_null("water", water)?;
         check_null("xz", xz)?;
         check_null("mask", mask)?;
-        if !xz_len.is_multiple_of(2) {
-            return Err(invalid("xz_len", format!("{xz_len}; must be even (pairs of x, z)")));
-        }
+        check_pairs(xz_len)?;
         check_len("mask_len", mask_len, xz_len / 2, "one byte per (x, z) pair: xz_len / 2")?;
         // SAFETY: lengths checked; the caller promises the buffers hold them.
         let (points, out) = unsafe { (vec2s(xz, xz_len), std::slice::from_raw_parts_mut(mask, mask_len)) };
-        check_finite_coordinates(points)?;
+        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
         let w = lock(&w.water);
         for (m, p) in out.iter_mut().zip(points) {
             *m = u8::from(w.has_water_at(*p));
+        }
+        Ok(())
+    })
+}
+
+/// `swell_water_heights` in double precision, for engines whose coordinates run far from the
+/// origin (at 10^6 m a float moves in 6 cm steps): `xz` holds `xz_len` doubles, pairs (x, z) in
+/// metres; `heights` receives one double per pair (`heights_len` = `xz_len / 2`). The point is
+/// carried into the water's frame in double precision and, for water that repeats in space (the
+/// FFT ocean), whole periods are taken off before the model (which computes in float) is asked,
+/// so such water answers at 10^6 m as precisely as near the origin; other models are asked at the
+/// point narrowed to float. Non-finite coordinates are refused and points with no water get NaN,
+/// as by `swell_water_heights`.
+///
+/// # Safety
+/// `water` is a live handle; `xz` points to `xz_len` readable doubles, `heights` to
+/// `heights_len` writable doubles, not overlapping.
+#[no_mangle]
+pub unsafe extern "C" fn swell_water_heights_f64(
+    water: *mut SwellWater,
+    t: f64,
+    xz: *const f64,
+    xz_len: usize,
+    heights: *mut f64,
+    heights_len: usize,
+) -> SwellResult {
+    guard(|| {
+        let w = non_null("water", water)?;
+        check_null("xz", xz)?;
+        check_null("heights", heights)?;
+        check_time(t)?;
+        check_pairs(xz_len)?;
+        check_len("heights_len", heights_len, xz_len / 2, "one height per (x, z) pair: xz_len / 2")?;
+        // SAFETY: lengths checked; the caller promises the buffers hold them.
+        let (points, out) = unsafe { (dvec2s(xz, xz_len), std::slice::from_raw_parts_mut(heights, heights_len)) };
+        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
+        w.pool.install(|| lock(&w.water).heights_at_f64(t, points, out))?;
+        Ok(())
+    })
+}
+
+/// `swell_water_normals` in double precision, as `swell_water_heights_f64`: `xz` holds `xz_len`
+/// doubles, pairs (x, z); `normals` receives (x, y, z) doubles per pair (`normals_len` =
+/// `3 * xz_len / 2`), three NaN where there is no water.
+///
+/// # Safety
+/// `water` is a live handle; `xz` points to `xz_len` readable doubles, `normals` to
+/// `normals_len` writable doubles, not overlapping.
+#[no_mangle]
+pub unsafe extern "C" fn swell_water_normals_f64(
+    water: *mut SwellWater,
+    t: f64,
+    xz: *const f64,
+    xz_len: usize,
+    normals: *mut f64,
+    normals_len: usize,
+) -> SwellResult {
+    guard(|| {
+        let w = non_null("water", water)?;
+        check_null("xz", xz)?;
+        check_null("normals", normals)?;
+        check_time(t)?;
+        check_pairs(xz_len)?;
+        check_len("normals_len", normals_len, 3 * (xz_len / 2), "3 doubles per (x, z) pair: 3 * xz_len / 2")?;
+        // SAFETY: lengths checked; the caller promises the buffers hold them.
+        let (points, out) = unsafe { (dvec2s(xz, xz_len), dvec3s(normals, normals_len)) };
+        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
+        w.pool.install(|| lock(&w.water).normals_at_f64(t, points, out))?;
+        Ok(())
+    })
+}
+
+/// `swell_water_coverage` of points given in double precision (`xz`: `xz_len` doubles, pairs
+/// (x, z) in metres; `mask`: `mask_len` = `xz_len / 2` bytes, 1 where there is water).
+///
+/// # Safety
+/// `water` is a live handle; `xz` points to `xz_len` readable doubles, `mask` to `mask_len`
+/// writable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn swell_water_coverage_f64(
+    water: *const SwellWater,
+    xz: *const f64,
+    xz_len: usize,
+    mask: *mut u8,
+    mask_len: usize,
+) -> SwellResult {
+    guard(|| {
+        let w = non_null("water", water)?;
+        check_null("xz", xz)?;
+        check_null("mask", mask)?;
+        check_pairs(xz_len)?;
+        check_len("mask_len", mask_len, xz_len / 2, "one byte per (x, z) pair: xz_len / 2")?;
+        // SAFETY: lengths checked; the caller promises the buffers hold them.
+        let (points, out) = unsafe { (dvec2s(xz, xz_len), std::slice::from_raw_parts_mut(mask, mask_len)) };
+        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
+        let w = lock(&w.water);
+        for (m, p) in out.iter_mut().zip(points) {
+            *m = u8::from(w.has_water_at_f64(*p));
         }
         Ok(())
     })

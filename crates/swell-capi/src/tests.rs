@@ -371,3 +371,44 @@ fn a_fifo_without_a_writer_is_an_error_at_once_not_a_hang() {
         assert!(message.contains(&format!("{f}: is a FIFO or pipe that no process writes to")), "{message}");
     }
 }
+
+/// Issue 37: the double variants refuse what the float ones refuse, name the bad coordinate, mask
+/// and NaN points off finite water, and answer as the library's `_f64` queries do.
+#[test]
+fn double_variants_check_as_the_float_ones_and_answer_as_the_library() {
+    let mut s = preset("pool").unwrap();
+    s.water.as_mut().unwrap().surface.cells = [8, 8];
+    let text = CString::new(s.to_toml()).unwrap();
+    let w = water(&text);
+    let c = s.water.as_ref().unwrap().surface.center.as_dvec2();
+    let xz = [c.x, c.y, 1.0e6, -2.0e4];
+    let (mut mask, mut h, mut n) = ([9u8; 2], [0.0f64; 2], [0.0f64; 6]);
+    assert_eq!(unsafe { swell_water_coverage_f64(w, xz.as_ptr(), 4, mask.as_mut_ptr(), 2) }, SwellResult::Ok);
+    assert_eq!(mask, [1, 0]);
+    assert_eq!(unsafe { swell_water_heights_f64(w, 1.0, xz.as_ptr(), 4, h.as_mut_ptr(), 2) }, SwellResult::Ok);
+    assert_eq!(unsafe { swell_water_normals_f64(w, 1.0, xz.as_ptr(), 4, n.as_mut_ptr(), 6) }, SwellResult::Ok);
+    let mut lib = Water::from_toml(&s.to_toml(), "test").unwrap();
+    let mut expected = [0.0f64; 2];
+    lib.heights_at_f64(1.0, &[glam::DVec2::new(c.x, c.y), glam::DVec2::new(1.0e6, -2.0e4)], &mut expected).unwrap();
+    assert_eq!(h[0], expected[0]);
+    assert!(h[1].is_nan() && n[3..].iter().all(|v| v.is_nan()) && n[..3].iter().all(|v| v.is_finite()));
+    // A NaN coordinate is named by its index in the flat array, the output left as it was.
+    let bad = [0.0, 0.0, 1.0, f64::NAN];
+    h = [7.0; 2];
+    assert_eq!(
+        unsafe { swell_water_heights_f64(w, 1.0, bad.as_ptr(), 4, h.as_mut_ptr(), 2) },
+        SwellResult::InvalidArgument
+    );
+    assert!(last_error().starts_with("xz[3]: NaN is not a finite coordinate"), "{}", last_error());
+    assert_eq!(h, [7.0; 2]);
+    assert_eq!(
+        unsafe { swell_water_normals_f64(w, 1.0, bad.as_ptr(), 3, n.as_mut_ptr(), 3) },
+        SwellResult::InvalidArgument
+    );
+    assert!(last_error().starts_with("xz_len: 3; must be even"), "{}", last_error());
+    assert_eq!(
+        unsafe { swell_water_coverage_f64(w, bad.as_ptr(), 4, mask.as_mut_ptr(), 2) },
+        SwellResult::InvalidArgument
+    );
+    unsafe { swell_water_destroy(w) };
+}

@@ -154,6 +154,14 @@ fn the_c_and_cpp_examples_agree_with_the_library_and_pass_valgrind() {
         assert_eq!(numbers_after(cpp, "vertex0 ", 3), p[0].to_array().to_vec(), "{cpp}");
         assert!(c.contains("foam 1"), "the example's ocean has foam: {c}");
     }
+    // Double precision far out: the buoy 10^6 m east as at home, and as the library says.
+    let mut far = [0.0f64; 2];
+    let pts = [glam::DVec2::new(3.0, -4.0), glam::DVec2::new(3.0 + 64.0 * 15625.0, -4.0)];
+    water.heights_at_f64(1.0, &pts, &mut far).unwrap();
+    // The models answer in f32, widened: 9 significant digits give it back exactly.
+    let c_far = numbers_after(&c_out, "far buoy ", 2);
+    assert_eq!(c_far, far.map(|h| h as f32).to_vec(), "{c_out}");
+    assert!((c_far[1] - c_far[0]).abs() < 1e-4, "{c_out}");
     // Errors reach C as codes with the CLI's messages.
     assert!(
         c_out.contains(

@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
 
-use glam::{Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec3};
 use numpy::{
     IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods,
 };
@@ -172,9 +172,11 @@ fn out_array<'py>(name: &str, a: Bound<'py, PyAny>, shape: [usize; 3]) -> PyResu
     Ok(a)
 }
 
-/// The (x, z) points of two equally shaped arrays, as f32 (the models' precision).
-fn points(x: &[f64], z: &[f64]) -> Vec<Vec2> {
-    x.iter().zip(z).map(|(&x, &z)| Vec2::new(x as f32, z as f32)).collect()
+/// The (x, z) points of two equally shaped arrays, kept in double precision: the queries'
+/// `_f64` forms take a periodic sea's whole periods off before narrowing to the models' f32, so
+/// an engine's coordinates at 10^6 m keep their precision.
+fn points(x: &[f64], z: &[f64]) -> Vec<DVec2> {
+    x.iter().zip(z).map(|(&x, &z)| DVec2::new(x, z)).collect()
 }
 
 #[pymethods]
@@ -277,9 +279,9 @@ impl Water {
         let heights = py
             .allow_threads(|| -> swell::Result<_> {
                 let pts = points(xs, zs);
-                let mut h = vec![0.0f32; pts.len()];
-                self.lock().heights_at(t, &pts, &mut h)?;
-                Ok(h.into_iter().map(f64::from).collect::<Vec<f64>>())
+                let mut h = vec![0.0; pts.len()];
+                self.lock().heights_at_f64(t, &pts, &mut h)?;
+                Ok(h)
             })
             .map_err(|e| self.err(e))?;
         if shape.is_empty() {
@@ -305,9 +307,9 @@ impl Water {
         let normals = py
             .allow_threads(|| -> swell::Result<_> {
                 let pts = points(xs, zs);
-                let mut n = vec![Vec3::ZERO; pts.len()];
-                self.lock().normals_at(t, &pts, &mut n)?;
-                Ok(n.into_iter().flat_map(|v| v.to_array().map(f64::from)).collect::<Vec<f64>>())
+                let mut n = vec![DVec3::ZERO; pts.len()];
+                self.lock().normals_at_f64(t, &pts, &mut n)?;
+                Ok(n.into_iter().flat_map(|v| v.to_array()).collect::<Vec<f64>>())
             })
             .map_err(|e| self.err(e))?;
         Ok(normals.into_pyarray(py).reshape(shape)?)
@@ -316,11 +318,16 @@ impl Water {
     /// Whether there is water above world (x, z) (m): bool with the broadcast shape of `x` and `z`
     /// (a bool when both are scalars). False off a finite patch, where `height_at` answers NaN and
     /// `normal_at` NaN vectors; always True for a sea over the whole plane.
-    fn has_water<'py>(&self, py: Python<'py>, x: &Bound<'py, PyAny>, z: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    fn has_water<'py>(
+        &self,
+        py: Python<'py>,
+        x: &Bound<'py, PyAny>,
+        z: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let (xa, za, shape) = broadcast(py, x, z)?;
         let pts = points(xa.as_slice()?, za.as_slice()?);
         let water = self.lock();
-        let covered: Vec<bool> = pts.iter().map(|&p| water.has_water_at(p)).collect();
+        let covered: Vec<bool> = pts.iter().map(|&p| water.has_water_at_f64(p)).collect();
         drop(water);
         if shape.is_empty() {
             return Ok(PyBool::new(py, covered[0]).to_owned().into_any());

@@ -165,3 +165,18 @@ def test_points_off_a_finite_patch_answer_nan_and_has_water_says_why():
     sea = swell.Water.from_toml(ONLY_WATER.replace("[water]\n", "[water]\nextent = 'unbounded'\n"))
     assert sea.has_water(x, z).all()
     assert np.isfinite(sea.height_at(x, z, 1.0)).all()
+
+
+def test_coordinates_far_from_the_origin_keep_their_precision():
+    # An FFT ocean repeats every patch_size (64 m): 15,625 patches out (10^6 m) the buoy floats as
+    # at home, where float32 coordinates would move in 6 cm steps.
+    ocean = swell.Water.from_toml(
+        "[water]\nmodel = 'fft'\ngrid = 32\npatch_size = 64.0\ncascades = 1\nsize = [64.0, 64.0]\ncells = [16, 16]\n"
+    )
+    x = np.array([3.3, 10.25, -0.01])
+    z = np.array([-7.1, 40.0, 63.99])
+    near = ocean.height_at(x, z, 2.5)
+    far = ocean.height_at(x + 1.0e6, z, 2.5)
+    assert np.abs(near).min() > 1e-3
+    np.testing.assert_allclose(far, near, atol=1e-4)
+    np.testing.assert_allclose(ocean.normal_at(x + 1.0e6, z, 2.5), ocean.normal_at(x, z, 2.5), atol=1e-3)

@@ -18,7 +18,7 @@
 //! `Ry` is the same rotation as [`crate::math::Transform`]'s about Y: positive angles turn
 //! counter-clockwise looking down the +Y axis.
 
-use glam::{Quat, Vec2, Vec3};
+use glam::{DQuat, DVec2, DVec3, Quat, Vec2, Vec3};
 use rayon::prelude::*;
 
 use crate::error::{check_finite_vec, check_range, Error, Result};
@@ -73,6 +73,17 @@ impl WaterPlacement {
         let p = Vec3::new(world.x - self.center.x, 0.0, world.y - self.center.y);
         let l = self.rotation().conjugate() * p / self.scale;
         Vec2::new(l.x + self.center.x, l.z + self.center.y)
+    }
+
+    /// [`WaterPlacement::to_local_xz`] in double precision, for world points far from the origin
+    /// (an engine's coordinates at 10^6 m, where f32 steps are 6 cm): the query API's `_f64`
+    /// variants take the model's spatial period off this before narrowing to the models' f32.
+    pub fn to_local_xz_f64(&self, world: DVec2) -> DVec2 {
+        let c = self.center.as_dvec2();
+        let d = world - c;
+        let l =
+            DQuat::from_rotation_y(f64::from(self.yaw)).conjugate() * DVec3::new(d.x, 0.0, d.y) / f64::from(self.scale);
+        DVec2::new(l.x, l.z) + c
     }
 
     /// A local height (m above rest) as a world height: the uniform scale applies to heights too.

@@ -55,7 +55,7 @@
 //! # Ok::<(), swell::Error>(())
 //! ```
 
-use glam::{Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec2, Vec3};
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
@@ -109,16 +109,44 @@ fn check_time(t: f64) -> Result<()> {
     }
 }
 
+/// A world point (x, z) as the queries take it: single ([`Vec2`]) or double ([`DVec2`]) precision.
+trait QueryPoint: Copy + Sync {
+    /// The coordinates, widened to f64.
+    fn xz(self) -> (f64, f64);
+}
+
+impl QueryPoint for Vec2 {
+    fn xz(self) -> (f64, f64) {
+        (f64::from(self.x), f64::from(self.y))
+    }
+}
+
+impl QueryPoint for DVec2 {
+    fn xz(self) -> (f64, f64) {
+        (self.x, self.y)
+    }
+}
+
 /// Refuses the first point with a non-finite coordinate, naming it `points[i]` (issue 37): a NaN
 /// buoy must be told, not answered with calm water.
-fn check_points(points: &[Vec2]) -> Result<()> {
-    match points.iter().position(|p| !p.is_finite()) {
+fn check_points<P: QueryPoint>(points: &[P]) -> Result<()> {
+    let finite = |p: &P| p.xz().0.is_finite() && p.xz().1.is_finite();
+    match points.iter().position(|p| !finite(p)) {
         None => Ok(()),
         Some(i) => {
-            let p = points[i];
-            Err(Error::out_of_range(format!("points[{i}]"), format!("({}, {})", p.x, p.y), "finite (x, z) in metres"))
+            let (x, z) = points[i].xz();
+            Err(Error::out_of_range(format!("points[{i}]"), format!("({x}, {z})"), "finite (x, z) in metres"))
         }
     }
+}
+
+/// `out[i] = answer(points[i])` for every point, in parallel tasks of [`POINTS_PER_TASK`].
+fn each_point<P: Sync, O: Send>(points: &[P], out: &mut [O], answer: impl Fn(&P) -> O + Sync) {
+    out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
+        for (o, p) in o.iter_mut().zip(p) {
+            *o = answer(p);
+        }
+    });
 }
 
 /// Checks that a caller's buffer `name` holds exactly `expected` elements.
@@ -305,13 +333,11 @@ impl Water {
         check_points(points)?;
         self.advance_to(t)?;
         let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
-        out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
-            for (h, p) in o.iter_mut().zip(p) {
-                *h = if covers(extent, &placement, grid, *p) {
-                    world_height(model, &placement, *p, t)
-                } else {
-                    f32::NAN
-                };
+        each_point(points, out, |&p| {
+            if covers(extent, &placement, grid, p) {
+                world_height(model, &placement, p, t)
+            } else {
+                f32::NAN
             }
         });
         Ok(())
@@ -327,14 +353,63 @@ impl Water {
         check_points(points)?;
         self.advance_to(t)?;
         let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
-        out.par_chunks_mut(POINTS_PER_TASK).zip(points.par_chunks(POINTS_PER_TASK)).for_each(|(o, p)| {
-            for (n, p) in o.iter_mut().zip(p) {
-                *n = if covers(extent, &placement, grid, *p) {
-                    world_normal(model, &placement, *p, t)
-                } else {
-                    Vec3::NAN
-                };
+        each_point(points, out, |&p| {
+            if covers(extent, &placement, grid, p) {
+                world_normal(model, &placement, p, t)
+            } else {
+                Vec3::NAN
             }
+        });
+        Ok(())
+    }
+
+    /// [`Water::has_water_at`] of a world point given in double precision.
+    pub fn has_water_at_f64(&self, p: DVec2) -> bool {
+        covers_f64(self.extent, &self.placement, &self.grid, p)
+    }
+
+    /// [`Water::heights_at`] of world points given in double precision, for engines whose
+    /// coordinates run far from the origin (at 10^6 m an f32 coordinate moves in 6 cm steps).
+    /// The point is carried into the patch's frame in f64 and, where the model repeats in space
+    /// (the FFT ocean, [`WaveModel::spatial_period`]), whole periods are taken off in f64 before
+    /// the model, which computes in f32, is asked: such water answers at 10^6 m as precisely as
+    /// near the origin. Models that do not repeat (Gerstner and sine sums, noise) are asked at
+    /// the local point narrowed to f32, so far out their answer has f32's spacing. NaN where
+    /// there is no water, non-finite coordinates refused, as [`Water::heights_at`].
+    pub fn heights_at_f64(&mut self, t: f64, points: &[DVec2], out: &mut [f64]) -> Result<()> {
+        check_len("heights", out.len(), points.len(), "one per point")?;
+        check_points(points)?;
+        self.advance_to(t)?;
+        let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
+        each_point(points, out, |&p| {
+            if covers_f64(extent, &placement, grid, p) {
+                let at = PreciseLocal::new(model, &placement, p);
+                f64::from(at.world_height(model, &placement, DVec2::ZERO, t))
+            } else {
+                f64::NAN
+            }
+        });
+        Ok(())
+    }
+
+    /// [`Water::normals_at`] of world points given in double precision, with the precision of
+    /// [`Water::heights_at_f64`]: the central differences are taken about the point with its
+    /// whole periods off, so they keep their 2 cm step at any distance.
+    pub fn normals_at_f64(&mut self, t: f64, points: &[DVec2], out: &mut [DVec3]) -> Result<()> {
+        check_len("normals", out.len(), points.len(), "one per point")?;
+        check_points(points)?;
+        self.advance_to(t)?;
+        let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
+        each_point(points, out, |&p| {
+            if !covers_f64(extent, &placement, grid, p) {
+                return DVec3::NAN;
+            }
+            let at = PreciseLocal::new(model, &placement, p);
+            let e = f64::from(NORMAL_STEP_M);
+            let h = |dx: f64, dz: f64| f64::from(at.world_height(model, &placement, DVec2::new(dx, dz), t));
+            let slope_x = (h(e, 0.0) - h(-e, 0.0)) / (2.0 * e);
+            let slope_z = (h(0.0, e) - h(0.0, -e)) / (2.0 * e);
+            DVec3::new(-slope_x, 1.0, -slope_z).normalize()
         });
         Ok(())
     }
@@ -348,6 +423,47 @@ fn covers(extent: WaterExtent, placement: &WaterPlacement, grid: &GridSpec, p: V
             let l = placement.to_local_xz(p);
             l.cmpge(grid.origin).all() && l.cmple(grid.origin + grid.size).all()
         }
+    }
+}
+
+/// [`covers`] of a world point in double precision.
+fn covers_f64(extent: WaterExtent, placement: &WaterPlacement, grid: &GridSpec, p: DVec2) -> bool {
+    match extent {
+        WaterExtent::Unbounded => true,
+        WaterExtent::Patch => {
+            let l = placement.to_local_xz_f64(p);
+            let (lo, hi) = (grid.origin.as_dvec2(), (grid.origin + grid.size).as_dvec2());
+            l.cmpge(lo).all() && l.cmple(hi).all()
+        }
+    }
+}
+
+/// A world point given in f64, about which the `_f64` queries ask the model: the whole spatial
+/// periods of its local point, taken off in f64 so that what is narrowed to f32 is small.
+struct PreciseLocal {
+    /// The world point, m.
+    world: DVec2,
+    /// Whole periods (m, local frame) to take off: zero for a model that does not repeat.
+    shift: DVec2,
+}
+
+impl PreciseLocal {
+    fn new(model: &dyn WaveModel, placement: &WaterPlacement, world: DVec2) -> Self {
+        let shift = match model.spatial_period() {
+            Some(period) => {
+                let period = f64::from(period);
+                (placement.to_local_xz_f64(world) / period).floor() * period
+            }
+            None => DVec2::ZERO,
+        };
+        Self { world, shift }
+    }
+
+    /// The world height (m) above the world point moved by `offset` (m): one shift for the
+    /// point and its neighbours, so differences across a period's seam stay differences.
+    fn world_height(&self, model: &dyn WaveModel, placement: &WaterPlacement, offset: DVec2, t: f64) -> f32 {
+        let l = (placement.to_local_xz_f64(self.world + offset) - self.shift).as_vec2();
+        placement.to_world_height(model.height_at(l.x, l.y, t))
     }
 }
 
@@ -508,6 +624,49 @@ mod tests {
         scene.water.as_mut().unwrap().surface.extent = Some(WaterExtent::Patch);
         let water = Water::from_scene(&scene).unwrap();
         assert!(!water.has_water_at(Vec2::new(1.0e5, 0.0)));
+    }
+
+    /// Issue 37: an engine at 10^6 m asks in f64. On periodic water (the FFT ocean) the answer
+    /// there is the answer a whole number of periods nearer, to f32's precision near the origin;
+    /// a placed patch's coverage is decided in f64; non-finite points are refused.
+    #[test]
+    fn double_precision_points_keep_their_precision_far_out() {
+        let text = "[water]\nmodel = 'fft'\ngrid = 32\npatch_size = 64.0\ncascades = 1\nchoppiness = 1.0\n\
+                    size = [64.0, 64.0]\ncells = [16, 16]\n";
+        let mut water = Water::from_toml(text, "test").unwrap();
+        let near = [DVec2::new(3.3, -7.1), DVec2::new(10.25, 40.0), DVec2::new(-0.01, 63.99)];
+        // 15,625 periods of 64 m: 10^6 m out along x, 4.096 * 10^6 m along z.
+        let far: Vec<DVec2> = near.iter().map(|p| *p + DVec2::new(1.0e6, 4.096e6)).collect();
+        let (mut h_near, mut h_far) = ([0.0; 3], [0.0; 3]);
+        water.heights_at_f64(2.5, &near, &mut h_near).unwrap();
+        water.heights_at_f64(2.5, &far, &mut h_far).unwrap();
+        let mut h32 = [0.0f32; 3];
+        water.heights_at(2.5, &near.map(|p| p.as_vec2()), &mut h32).unwrap();
+        for k in 0..3 {
+            assert!(h_near[k].abs() > 1e-3, "a calm point proves nothing: {}", h_near[k]);
+            assert!((h_far[k] - h_near[k]).abs() < 1e-4, "point {k}: far {} near {}", h_far[k], h_near[k]);
+            assert!((h_near[k] - f64::from(h32[k])).abs() < 1e-4, "point {k}: f64 {} f32 {}", h_near[k], h32[k]);
+        }
+        let (mut n_near, mut n_far) = ([DVec3::ZERO; 3], [DVec3::ZERO; 3]);
+        water.normals_at_f64(2.5, &near, &mut n_near).unwrap();
+        water.normals_at_f64(2.5, &far, &mut n_far).unwrap();
+        for k in 0..3 {
+            assert!((n_far[k] - n_near[k]).length() < 1e-3, "point {k}: far {} near {}", n_far[k], n_near[k]);
+            assert!((n_near[k].length() - 1.0).abs() < 1e-9);
+        }
+        let e = water.heights_at_f64(0.0, &[DVec2::ZERO, DVec2::new(f64::NAN, 1.0)], &mut h_near[..2]).unwrap_err();
+        assert!(e.to_string().starts_with("points[1] = (NaN, 1) is outside finite"), "{e}");
+        // A placed patch 10^6 m out: in and just out of it, 1 cm apart, told apart.
+        let mut scene = small("pool", 8);
+        let s = &mut scene.water.as_mut().unwrap().surface;
+        s.center = Vec2::new(1.0e6, 0.0);
+        let (half, center) = (0.5 * f64::from(s.size.x), f64::from(s.center.x));
+        let mut pool = Water::from_scene(&scene).unwrap();
+        let (inside, outside) = (DVec2::new(center + half - 0.005, 0.0), DVec2::new(center + half + 0.005, 0.0));
+        assert!(pool.has_water_at_f64(inside) && !pool.has_water_at_f64(outside));
+        let mut h = [0.0; 2];
+        pool.heights_at_f64(1.0, &[inside, outside], &mut h).unwrap();
+        assert!(h[0].is_finite() && h[1].is_nan(), "{h:?}");
     }
 
     #[test]
