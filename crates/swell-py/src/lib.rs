@@ -154,14 +154,23 @@ fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, P
     Err(py_err(swell::Error::out_of_range(format!("{name}{at}"), value, "finite world metres")))
 }
 
+/// A shape as Python prints it: `(9, 9, 3)`.
+fn shape_text(shape: &[usize]) -> String {
+    format!("({})", shape.iter().map(usize::to_string).collect::<Vec<_>>().join(", "))
+}
+
 /// A caller's `out=` array `name`: a writable, C-contiguous float32 array of `shape`, or a
 /// TypeError / ValueError naming what is wrong.
 fn out_array<'py>(name: &str, a: Bound<'py, PyAny>, shape: [usize; 3]) -> PyResult<Bound<'py, PyArray3<f32>>> {
-    let a = a
-        .downcast_into::<PyArray3<f32>>()
-        .map_err(|e| PyTypeError::new_err(format!("{name}: must be a float32 numpy array of shape {shape:?} ({e})")))?;
+    let a = a.downcast_into::<PyArray3<f32>>().map_err(|e| {
+        PyTypeError::new_err(format!("{name}: must be a float32 numpy array of shape {} ({e})", shape_text(&shape)))
+    })?;
     if a.shape() != shape {
-        return Err(PyValueError::new_err(format!("{name}: shape {:?}; must be {shape:?} (rows, cols, 3)", a.shape())));
+        return Err(PyValueError::new_err(format!(
+            "{name}: shape {}; must be {} (rows, cols, 3)",
+            shape_text(a.shape()),
+            shape_text(&shape)
+        )));
     }
     if !a.is_c_contiguous() {
         return Err(PyValueError::new_err(format!("{name}: must be C-contiguous (numpy.ascontiguousarray)")));

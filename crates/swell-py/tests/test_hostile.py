@@ -2,6 +2,7 @@
 calm water, and messages that must not echo control characters or overlong text."""
 
 import datetime
+import re
 
 import numpy as np
 import pytest
@@ -42,13 +43,13 @@ def test_the_first_bad_index_of_an_array_is_named(water):
         (None, "object"),
         (np.array([1 + 2j]), "complex128"),
         (np.array(["1.0"]), "<U3"),
-        (np.array([datetime.datetime(2026, 1, 1)], dtype="datetime64[s]"), "<M8[s]"),
+        (np.array([datetime.datetime(2026, 1, 1)], dtype="datetime64[s]"), "datetime64[s]"),
         (np.array([True, False]), "bool"),
         ("3.0", "<U3"),
     ],
 )
 def test_non_real_coordinates_raise_type_error_naming_the_dtype(water, bad, dtype):
-    with pytest.raises(TypeError, match=rf"^x: dtype {dtype} is not a real number type"):
+    with pytest.raises(TypeError, match=rf"^x: dtype {re.escape(dtype)} is not a real number type"):
         water.height_at(bad, 0.0, 0.0)
     with pytest.raises(TypeError, match=r"^z: dtype"):
         water.normal_at(0.0, bad, 0.0)

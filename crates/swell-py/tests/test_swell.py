@@ -157,13 +157,15 @@ def test_heights_broadcast_and_match_the_mesh():
 
 
 def test_answers_do_not_depend_on_the_order_of_calls():
-    pts = np.linspace(-50, 50, 101)
+    # Within the 32 m lattice: off it there is no water and the answer is NaN.
+    pts = np.linspace(-15, 15, 101)
     fresh = swell.Water.from_toml(preset("springs"))
     expected = fresh.height_at(pts, pts * 0.5, 4.0)
     used = swell.Water.from_toml(preset("springs"))
     for t in (9.0, 1.0, 4.0, 0.0):
         used.height_at(pts, pts, t)
         used.displace(t)
+    assert np.isfinite(expected).all() and np.abs(expected).max() > 0
     assert np.array_equal(used.height_at(pts, pts * 0.5, 4.0), expected)
 
 
