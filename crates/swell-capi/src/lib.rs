@@ -26,7 +26,7 @@ use std::thread::JoinHandle;
 use glam::{DVec2, DVec3, Vec2, Vec3};
 use swell_lib::render::Renderer;
 use swell_lib::scene::Scene;
-use swell_lib::world::World;
+use swell_lib::world::{World, MAX_QUERY_COORDINATE_M};
 use swell_lib::{Error, Water};
 
 /// What a call did: `SWELL_RESULT_OK` (0) or the kind of failure; the message is
@@ -248,12 +248,18 @@ fn check_len(name: &str, len: usize, expected: usize, what: &str) -> Result<(), 
     }
 }
 
-/// Refuses the first non-finite coordinate of the flattened pairs (x0, z0, x1, z1, ...), naming
-/// it `xz[k]` (issue 37): a NaN buoy must be told with [`SwellResult::InvalidArgument`], not
-/// answered with calm water.
+/// Refuses the first non-finite coordinate of the flattened pairs (x0, z0, x1, z1, ...), or one
+/// farther than [`MAX_QUERY_COORDINATE_M`] from the origin, naming it `xz[k]` (issue 37): a NaN
+/// buoy must be told with [`SwellResult::InvalidArgument`], not answered with calm water.
 fn check_finite_coordinates<C: Into<f64>>(flat: impl Iterator<Item = C>) -> Result<(), Failure> {
-    match flat.map(Into::into).enumerate().find(|(_, c)| !c.is_finite()) {
+    // Written so that NaN fails it.
+    let within = |c: f64| c.abs() <= MAX_QUERY_COORDINATE_M;
+    match flat.map(Into::into).enumerate().find(|(_, c)| !within(*c)) {
         None => Ok(()),
+        Some((k, c)) if c.is_finite() => Err(invalid(
+            &format!("xz[{k}]"),
+            format!("{} m is farther than 1e9 m from the origin (MAX_QUERY_COORDINATE_M)", swell_lib::error::Human(c)),
+        )),
         Some((k, c)) => Err(invalid(&format!("xz[{k}]"), format!("{c} is not a finite coordinate (world metres)"))),
     }
 }

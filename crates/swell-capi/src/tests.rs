@@ -401,6 +401,13 @@ fn double_variants_check_as_the_float_ones_and_answer_as_the_library() {
     );
     assert!(last_error().starts_with("xz[3]: NaN is not a finite coordinate"), "{}", last_error());
     assert_eq!(h, [7.0; 2]);
+    // Finite, but past the models' arithmetic.
+    let far = [0.0, 0.0, 1.0, 2.0e196];
+    assert_eq!(
+        unsafe { swell_water_heights_f64(w, 1.0, far.as_ptr(), 4, h.as_mut_ptr(), 2) },
+        SwellResult::InvalidArgument
+    );
+    assert!(last_error().starts_with("xz[3]: 2e196 m is farther than 1e9 m from the origin"), "{}", last_error());
     assert_eq!(
         unsafe { swell_water_normals_f64(w, 1.0, bad.as_ptr(), 3, n.as_mut_ptr(), 3) },
         SwellResult::InvalidArgument

@@ -125,9 +125,10 @@ fn broadcast<'py>(
 
 /// `v` as a float64 array if it holds real, finite coordinates (issue 37): integers and floats of
 /// any layout are taken as they were; booleans, complex numbers, datetimes, strings, objects and
-/// `None` raise TypeError naming the argument and the dtype, and a NaN or infinite coordinate
-/// raises ValueError naming the argument, its first bad index and the value: an engine must learn
-/// that its buoy went NaN, not be answered with calm water.
+/// `None` raise TypeError naming the argument and the dtype, and a NaN or infinite coordinate, or
+/// one past `MAX_QUERY_COORDINATE_M` (10^9 m), raises ValueError naming the argument, its first
+/// bad index and the value: an engine must learn that its buoy went NaN, not be answered with calm
+/// water.
 fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
     let a = np.call_method1("asarray", (v,))?;
     let dtype = a.getattr("dtype")?;
@@ -139,11 +140,14 @@ fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, P
         )));
     }
     let a = np.call_method1("asarray", (a, "float64"))?;
-    let finite = np.call_method1("isfinite", (&a,))?.call_method0("ravel")?;
-    if finite.call_method0("all")?.extract::<bool>()? {
+    // |v| <= the limit is false for NaN and infinities too: one test finds every bad coordinate.
+    let within = np
+        .call_method1("less_equal", (np.call_method1("abs", (&a,))?, swell::world::MAX_QUERY_COORDINATE_M))?
+        .call_method0("ravel")?;
+    if within.call_method0("all")?.extract::<bool>()? {
         return Ok(a);
     }
-    let first: usize = np.call_method1("argmin", (&finite,))?.extract()?;
+    let first: usize = np.call_method1("argmin", (&within,))?.extract()?;
     let value: f64 = a.call_method0("ravel")?.get_item(first)?.extract()?;
     let index: Vec<usize> = np.call_method1("unravel_index", (first, a.getattr("shape")?))?.extract()?;
     let at = if index.is_empty() {
@@ -151,7 +155,12 @@ fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, P
     } else {
         format!("[{}]", index.iter().map(usize::to_string).collect::<Vec<_>>().join(", "))
     };
-    Err(py_err(swell::Error::out_of_range(format!("{name}{at}"), value, "finite world metres")))
+    let range = if value.is_finite() {
+        "world metres within 1e9 of the origin (MAX_QUERY_COORDINATE_M)"
+    } else {
+        "finite world metres"
+    };
+    Err(py_err(swell::Error::out_of_range(format!("{name}{at}"), swell::error::Human(value), range)))
 }
 
 /// A shape as Python prints it: `(9, 9, 3)`.

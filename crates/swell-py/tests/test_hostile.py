@@ -55,6 +55,13 @@ def test_non_real_coordinates_raise_type_error_naming_the_dtype(water, bad, dtyp
         water.normal_at(0.0, bad, 0.0)
 
 
+def test_coordinates_past_the_models_arithmetic_are_refused(water):
+    with pytest.raises(ValueError, match=r"^x\[1\] = 2e196 is outside world metres within 1e9 of the origin"):
+        water.height_at(np.array([0.0, 2.0e196]), 0.0, 0.0)
+    with pytest.raises(ValueError, match=r"^z = -1.5e9 is outside"):
+        water.normal_at(0.0, -1.5e9, 0.0)
+
+
 def test_integer_and_float_arrays_of_any_layout_are_still_taken(water):
     base = np.arange(12, dtype=np.float64).reshape(3, 4)
     expected = water.height_at(base, base.T.copy().T, 0.5)

@@ -68,7 +68,10 @@ impl Perlin {
     /// repeats every 256 units along each axis.
     pub fn noise3_with_gradient(&self, p: Vec3) -> (f32, Vec3) {
         let cell = p.floor();
-        let (ix, iy, iz) = (cell.x as i32, cell.y as i32, cell.z as i32);
+        // The lattice repeats every 256 cells: the cell is taken modulo 256 before it becomes an
+        // integer, so that a point 10^30 m out (whose cell saturates i32) cannot overflow `ix + 1`.
+        let wrapped = cell.rem_euclid(Vec3::splat(256.0));
+        let (ix, iy, iz) = (wrapped.x as i32, wrapped.y as i32, wrapped.z as i32);
         let f = p - cell;
         let (u, v, w) = (fade(f.x), fade(f.y), fade(f.z));
         let (du, dv, dw) = (fade_derivative(f.x), fade_derivative(f.y), fade_derivative(f.z));
@@ -175,5 +178,22 @@ mod tests {
         }
         assert!(differs);
         assert_eq!(a.noise3(Vec3::new(3.0, 5.0, 7.0)), 0.0);
+    }
+
+    /// Found by the water_query fuzz target (issue 37): at 10^10 and more the cell saturated i32
+    /// and `ix + 1` overflowed. Now any finite point gives finite noise, and the lattice's period
+    /// of 256 holds across negative and large cells alike.
+    #[test]
+    fn any_finite_point_gives_finite_noise_and_the_period_holds() {
+        let n = Perlin::new(3);
+        for x in [1.0e10, -1.0e10, 3.0e9, f32::MAX, -f32::MAX, 2.2e-38, 1.0e30] {
+            let (v, g) = n.noise3_with_gradient(Vec3::new(x, 0.5 * x, 1.25));
+            assert!(v.is_finite() && g.is_finite(), "at {x}: {v} {g}");
+        }
+        for k in [-3.0, 1.0, 4096.0] {
+            // Quarters, so that p + 256 k is exact in f32 and only the period is tested.
+            let p = Vec3::new(10.25, -7.75, 0.5);
+            assert_eq!(n.noise3(p), n.noise3(p + Vec3::new(256.0 * k, -256.0 * k, 0.0)), "k = {k}");
+        }
     }
 }

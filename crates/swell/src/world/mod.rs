@@ -14,5 +14,5 @@ mod world;
 pub use sea_stats::{sea_stats, SeaStats};
 pub use terrain_body::TerrainBody;
 pub use terrain_far_land::FarLand;
-pub use water_query::{Watch, Water, NORMAL_STEP_M, WORK_PER_WATCH};
+pub use water_query::{Watch, Water, MAX_QUERY_COORDINATE_M, NORMAL_STEP_M, WORK_PER_WATCH};
 pub use world::{WaterBody, World};

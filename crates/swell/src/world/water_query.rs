@@ -127,15 +127,27 @@ impl QueryPoint for DVec2 {
     }
 }
 
-/// Refuses the first point with a non-finite coordinate, naming it `points[i]` (issue 37): a NaN
-/// buoy must be told, not answered with calm water.
+/// Farthest a query point may lie from the origin along x or z, metres: a million kilometres, 25
+/// times round the Earth. Past it the models' f32 arithmetic overflows (a wave's phase `k x` at
+/// 10^38 m is infinite, and f64 points past 3.4 * 10^38 m have no f32 at all), so such a point
+/// is refused rather than answered with NaN. Within it every model's answer is finite.
+pub const MAX_QUERY_COORDINATE_M: f64 = 1.0e9;
+
+/// Refuses the first point with a non-finite coordinate or one past [`MAX_QUERY_COORDINATE_M`],
+/// naming it `points[i]` (issue 37): a NaN buoy must be told, not answered with calm water.
 fn check_points<P: QueryPoint>(points: &[P]) -> Result<()> {
-    let finite = |p: &P| p.xz().0.is_finite() && p.xz().1.is_finite();
-    match points.iter().position(|p| !finite(p)) {
+    let within = |c: f64| c.abs() <= MAX_QUERY_COORDINATE_M;
+    match points.iter().position(|p| !(within(p.xz().0) && within(p.xz().1))) {
         None => Ok(()),
         Some(i) => {
             let (x, z) = points[i].xz();
-            Err(Error::out_of_range(format!("points[{i}]"), format!("({x}, {z})"), "finite (x, z) in metres"))
+            let range = if x.is_finite() && z.is_finite() {
+                "(x, z) within 1e9 m of the origin (MAX_QUERY_COORDINATE_M)"
+            } else {
+                "finite (x, z) in metres"
+            };
+            let (x, z) = (crate::error::Human(x), crate::error::Human(z));
+            Err(Error::out_of_range(format!("points[{i}]"), format!("({x}, {z})"), range))
         }
     }
 }
@@ -656,6 +668,15 @@ mod tests {
         }
         let e = water.heights_at_f64(0.0, &[DVec2::ZERO, DVec2::new(f64::NAN, 1.0)], &mut h_near[..2]).unwrap_err();
         assert!(e.to_string().starts_with("points[1] = (NaN, 1) is outside finite"), "{e}");
+        // Finite but past the models' arithmetic: refused, not answered with NaN.
+        let e = water.heights_at_f64(0.0, &[DVec2::new(1.0, 2.0e196)], &mut h_near[..1]).unwrap_err();
+        assert!(e.to_string().contains("within 1e9 m of the origin (MAX_QUERY_COORDINATE_M)"), "{e}");
+        let mut h32 = [0.0f32];
+        let e = water.heights_at(0.0, &[Vec2::new(-1.5e9, 0.0)], &mut h32).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "points[0] = (-1.5e9, 0) is outside (x, z) within 1e9 m of the origin (MAX_QUERY_COORDINATE_M)"
+        );
         // A placed patch 10^6 m out: in and just out of it, 1 cm apart, told apart.
         let mut scene = small("pool", 8);
         let s = &mut scene.water.as_mut().unwrap().surface;
