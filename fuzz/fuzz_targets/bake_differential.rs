@@ -24,29 +24,9 @@ use swell::export::{model_loop_period, Bake, BakeSettings, ExrCompression, Frame
 use swell::scene::Scene;
 use swell::world::World;
 
-/// The input, read a byte at a time; zeros once it runs out.
-struct Bytes<'a>(&'a [u8]);
-
-impl Bytes<'_> {
-    fn byte(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((b, rest)) => {
-                self.0 = rest;
-                *b
-            }
-            None => 0,
-        }
-    }
-
-    fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[usize::from(self.byte()) % items.len()]
-    }
-
-    /// A number in [lo, hi].
-    fn range(&mut self, lo: u32, hi: u32) -> u32 {
-        lo + u32::from(self.byte()) % (hi - lo + 1)
-    }
-}
+#[path = "common/input_bytes.rs"]
+mod input_bytes;
+use input_bytes::Bytes;
 
 /// A water-only scene and whether it may tile (an FFT ocean over exactly its patch).
 fn scene_text(b: &mut Bytes) -> (String, bool) {

@@ -22,37 +22,18 @@ use swell::scene::{preset, WaterExtent, PRESETS};
 use swell::world::MAX_QUERY_COORDINATE_M;
 use swell::Water;
 
-/// The input, read a byte at a time; zeros once it runs out.
-struct Bytes<'a>(&'a [u8]);
+#[path = "common/input_bytes.rs"]
+mod input_bytes;
+use input_bytes::Bytes;
 
-impl Bytes<'_> {
-    fn byte(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((b, rest)) => {
-                self.0 = rest;
-                *b
-            }
-            None => 0,
-        }
-    }
-
-    fn u64(&mut self) -> u64 {
-        (0..8).fold(0, |v, _| v << 8 | u64::from(self.byte()))
-    }
-
-    fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[usize::from(self.byte()) % items.len()]
-    }
-
-    /// A coordinate: mostly a sensible one (within a few hundred metres, or far out), sometimes
-    /// any f64 bit pattern at all.
-    fn coordinate(&mut self) -> f64 {
-        match self.byte() % 8 {
-            0 => f64::from_bits(self.u64()),
-            1 => self.pick(&[f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -0.0, f64::MIN_POSITIVE, 1.0e30, 1.0e6]),
-            2 => (self.u64() % 2_000_000) as f64 * 1.0e3 - 1.0e9,
-            _ => (self.u64() % 1_000_000) as f64 * 1.0e-3 - 500.0,
-        }
+/// A coordinate (m): mostly a sensible one (within a few hundred metres, or far out), sometimes
+/// any f64 bit pattern at all.
+fn coordinate(b: &mut Bytes) -> f64 {
+    match b.byte() % 8 {
+        0 => f64::from_bits(b.u64()),
+        1 => b.pick(&[f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -0.0, f64::MIN_POSITIVE, 1.0e30, 1.0e6]),
+        2 => (b.u64() % 2_000_000) as f64 * 1.0e3 - 1.0e9,
+        _ => (b.u64() % 1_000_000) as f64 * 1.0e-3 - 500.0,
     }
 }
 
@@ -90,7 +71,7 @@ fuzz_target!(|data: &[u8]| {
     let Ok(mut water) = Water::from_toml(&text, "fuzz") else { return };
 
     let count = usize::from(b.byte() % 9);
-    let points: Vec<DVec2> = (0..count).map(|_| DVec2::new(b.coordinate(), b.coordinate())).collect();
+    let points: Vec<DVec2> = (0..count).map(|_| DVec2::new(coordinate(&mut b), coordinate(&mut b))).collect();
     let narrow: Vec<Vec2> = points.iter().map(|p| p.as_vec2()).collect();
     let times: Vec<f64> = (0..3).map(|_| f64::from(b.byte() % 160) * 0.25).collect();
 

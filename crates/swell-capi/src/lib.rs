@@ -271,24 +271,72 @@ unsafe fn vec3s<'a>(p: *mut f32, len: usize) -> &'a mut [Vec3] {
     unsafe { std::slice::from_raw_parts_mut(p.cast::<Vec3>(), len / 3) }
 }
 
-/// A caller's float buffer of `len` floats as `len / 2` (x, z) points.
-unsafe fn vec2s<'a>(p: *const f32, len: usize) -> &'a [Vec2] {
-    // SAFETY: Vec2 is #[repr(C)] { x, y: f32 } (size 8, align 4); the caller promises `len` floats.
-    unsafe { std::slice::from_raw_parts(p.cast::<Vec2>(), len / 2) }
+/// The words of a length error for one height per (x, z) pair.
+const ONE_PER_PAIR: &str = "one height per (x, z) pair: xz_len / 2";
+/// The words of a length error for one mask byte per (x, z) pair.
+const ONE_BYTE_PER_PAIR: &str = "one byte per (x, z) pair: xz_len / 2";
+
+/// A point query's output buffer as the caller passed it: its parameter name, the pointer, its
+/// length in scalars, how many scalars each (x, z) pair gets, and the words of a length error.
+struct OutBuffer<S> {
+    name: &'static str,
+    ptr: *mut S,
+    len: usize,
+    per_pair: usize,
+    what: &'static str,
 }
 
-/// A caller's double buffer of `len` doubles as `len / 2` (x, z) points.
-unsafe fn dvec2s<'a>(p: *const f64, len: usize) -> &'a [DVec2] {
-    // SAFETY: DVec2 is #[repr(C)] { x, y: f64 } (size 16, align 8, like double[2]); the caller
-    // promises `len` doubles, aligned as C aligns a double.
-    unsafe { std::slice::from_raw_parts(p.cast::<DVec2>(), len / 2) }
+/// What every point query checks before it reads or writes, in this order: NULL pointers, pairs,
+/// the output's length (`NAME_len`), then every coordinate finite and within
+/// `MAX_QUERY_COORDINATE_M`. Then the buffers as slices: the points as `P` (pairs of `C`), the
+/// output as `O` (`per_pair` scalars `S` each). Nothing is written when a check fails.
+///
+/// # Safety
+/// `xz` points to `xz_len` readable `C`, `out.ptr` to `out.len` writable `S`, not overlapping (the
+/// calling function's contract); `P` is laid out as `[C; 2]` and `O` as `[S; per_pair]`, which
+/// glam's `#[repr(C)]` vectors (`Vec2` = float[2], `DVec3` = double[3], ...) and the scalars are.
+unsafe fn query_buffers<'a, C: Copy + Into<f64>, P, S, O>(
+    xz: *const C,
+    xz_len: usize,
+    out: OutBuffer<S>,
+) -> Result<(&'a [P], &'a mut [O]), Failure> {
+    check_null("xz", xz)?;
+    check_null(out.name, out.ptr)?;
+    check_pairs(xz_len)?;
+    check_len(&format!("{}_len", out.name), out.len, out.per_pair * (xz_len / 2), out.what)?;
+    debug_assert!(size_of::<P>() == 2 * size_of::<C>() && size_of::<O>() == out.per_pair * size_of::<S>());
+    // SAFETY: lengths checked above; the caller promises the buffers hold them, and the layouts.
+    unsafe {
+        check_finite_coordinates(std::slice::from_raw_parts(xz, xz_len).iter().copied())?;
+        let points = std::slice::from_raw_parts(xz.cast::<P>(), xz_len / 2);
+        Ok((points, std::slice::from_raw_parts_mut(out.ptr.cast::<O>(), out.len / out.per_pair)))
+    }
 }
 
-/// A caller's double buffer of `len` doubles as `len / 3` vectors (`len` is checked first).
-unsafe fn dvec3s<'a>(p: *mut f64, len: usize) -> &'a mut [DVec3] {
-    // SAFETY: DVec3 is #[repr(C)] { x, y, z: f64 } (size 24, align 8, like double[3]); the caller
-    // promises `len` writable doubles.
-    unsafe { std::slice::from_raw_parts_mut(p.cast::<DVec3>(), len / 3) }
+/// `swell_water_coverage` and its double variant: `covered` tells whether a point `P` (pairs of
+/// `C`) has water.
+///
+/// # Safety
+/// As `query_buffers`, with `mask` as its output of one byte per pair.
+unsafe fn coverage<C: Copy + Into<f64>, P: Copy>(
+    water: *const SwellWater,
+    xz: *const C,
+    xz_len: usize,
+    mask: *mut u8,
+    mask_len: usize,
+    covered: fn(&Water, P) -> bool,
+) -> SwellResult {
+    guard(|| {
+        let w = non_null("water", water)?;
+        let out = OutBuffer { name: "mask", ptr: mask, len: mask_len, per_pair: 1, what: ONE_BYTE_PER_PAIR };
+        // SAFETY: the calling function's contract.
+        let (points, out) = unsafe { query_buffers::<C, P, u8, u8>(xz, xz_len, out)? };
+        let w = lock(&w.water);
+        for (m, p) in out.iter_mut().zip(points) {
+            *m = u8::from(covered(&w, *p));
+        }
+        Ok(())
+    })
 }
 
 /// Refuses an odd count of coordinates: they come in (x, z) pairs.
@@ -495,14 +543,10 @@ pub unsafe extern "C" fn swell_water_heights(
 ) -> SwellResult {
     guard(|| {
         let w = non_null("water", water)?;
-        check_null("xz", xz)?;
-        check_null("heights", heights)?;
         check_time(t)?;
-        check_pairs(xz_len)?;
-        check_len("heights_len", heights_len, xz_len / 2, "one height per (x, z) pair: xz_len / 2")?;
-        // SAFETY: lengths checked; the caller promises the buffers hold them.
-        let (points, out) = unsafe { (vec2s(xz, xz_len), std::slice::from_raw_parts_mut(heights, heights_len)) };
-        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
+        let out = OutBuffer { name: "heights", ptr: heights, len: heights_len, per_pair: 1, what: ONE_PER_PAIR };
+        // SAFETY: the function's contract; Vec2 is laid out as float[2].
+        let (points, out) = unsafe { query_buffers::<f32, Vec2, f32, f32>(xz, xz_len, out)? };
         w.pool.install(|| lock(&w.water).heights_at(t, points, out))?;
         Ok(())
     })
@@ -528,14 +572,11 @@ pub unsafe extern "C" fn swell_water_normals(
 ) -> SwellResult {
     guard(|| {
         let w = non_null("water", water)?;
-        check_null("xz", xz)?;
-        check_null("normals", normals)?;
         check_time(t)?;
-        check_pairs(xz_len)?;
-        check_len("normals_len", normals_len, 3 * (xz_len / 2), "3 floats per (x, z) pair: 3 * xz_len / 2")?;
-        // SAFETY: lengths checked; the caller promises the buffers hold them.
-        let (points, out) = unsafe { (vec2s(xz, xz_len), vec3s(normals, normals_len)) };
-        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
+        let what = "3 floats per (x, z) pair: 3 * xz_len / 2";
+        let out = OutBuffer { name: "normals", ptr: normals, len: normals_len, per_pair: 3, what };
+        // SAFETY: the function's contract; Vec2 and Vec3 are laid out as float[2] and float[3].
+        let (points, out) = unsafe { query_buffers::<f32, Vec2, f32, Vec3>(xz, xz_len, out)? };
         w.pool.install(|| lock(&w.water).normals_at(t, points, out))?;
         Ok(())
     })
@@ -558,21 +599,8 @@ pub unsafe extern "C" fn swell_water_coverage(
     mask: *mut u8,
     mask_len: usize,
 ) -> SwellResult {
-    guard(|| {
-        let w = non_null("water", water)?;
-        check_null("xz", xz)?;
-        check_null("mask", mask)?;
-        check_pairs(xz_len)?;
-        check_len("mask_len", mask_len, xz_len / 2, "one byte per (x, z) pair: xz_len / 2")?;
-        // SAFETY: lengths checked; the caller promises the buffers hold them.
-        let (points, out) = unsafe { (vec2s(xz, xz_len), std::slice::from_raw_parts_mut(mask, mask_len)) };
-        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
-        let w = lock(&w.water);
-        for (m, p) in out.iter_mut().zip(points) {
-            *m = u8::from(w.has_water_at(*p));
-        }
-        Ok(())
-    })
+    // SAFETY: the function's contract; Vec2 is laid out as float[2].
+    unsafe { coverage::<f32, Vec2>(water, xz, xz_len, mask, mask_len, Water::has_water_at) }
 }
 
 /// `swell_water_heights` in double precision, for engines whose coordinates run far from the
@@ -598,14 +626,10 @@ pub unsafe extern "C" fn swell_water_heights_f64(
 ) -> SwellResult {
     guard(|| {
         let w = non_null("water", water)?;
-        check_null("xz", xz)?;
-        check_null("heights", heights)?;
         check_time(t)?;
-        check_pairs(xz_len)?;
-        check_len("heights_len", heights_len, xz_len / 2, "one height per (x, z) pair: xz_len / 2")?;
-        // SAFETY: lengths checked; the caller promises the buffers hold them.
-        let (points, out) = unsafe { (dvec2s(xz, xz_len), std::slice::from_raw_parts_mut(heights, heights_len)) };
-        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
+        let out = OutBuffer { name: "heights", ptr: heights, len: heights_len, per_pair: 1, what: ONE_PER_PAIR };
+        // SAFETY: the function's contract; DVec2 is laid out as double[2].
+        let (points, out) = unsafe { query_buffers::<f64, DVec2, f64, f64>(xz, xz_len, out)? };
         w.pool.install(|| lock(&w.water).heights_at_f64(t, points, out))?;
         Ok(())
     })
@@ -629,14 +653,11 @@ pub unsafe extern "C" fn swell_water_normals_f64(
 ) -> SwellResult {
     guard(|| {
         let w = non_null("water", water)?;
-        check_null("xz", xz)?;
-        check_null("normals", normals)?;
         check_time(t)?;
-        check_pairs(xz_len)?;
-        check_len("normals_len", normals_len, 3 * (xz_len / 2), "3 doubles per (x, z) pair: 3 * xz_len / 2")?;
-        // SAFETY: lengths checked; the caller promises the buffers hold them.
-        let (points, out) = unsafe { (dvec2s(xz, xz_len), dvec3s(normals, normals_len)) };
-        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
+        let what = "3 doubles per (x, z) pair: 3 * xz_len / 2";
+        let out = OutBuffer { name: "normals", ptr: normals, len: normals_len, per_pair: 3, what };
+        // SAFETY: the function's contract; DVec2 and DVec3 are laid out as double[2] and double[3].
+        let (points, out) = unsafe { query_buffers::<f64, DVec2, f64, DVec3>(xz, xz_len, out)? };
         w.pool.install(|| lock(&w.water).normals_at_f64(t, points, out))?;
         Ok(())
     })
@@ -656,21 +677,8 @@ pub unsafe extern "C" fn swell_water_coverage_f64(
     mask: *mut u8,
     mask_len: usize,
 ) -> SwellResult {
-    guard(|| {
-        let w = non_null("water", water)?;
-        check_null("xz", xz)?;
-        check_null("mask", mask)?;
-        check_pairs(xz_len)?;
-        check_len("mask_len", mask_len, xz_len / 2, "one byte per (x, z) pair: xz_len / 2")?;
-        // SAFETY: lengths checked; the caller promises the buffers hold them.
-        let (points, out) = unsafe { (dvec2s(xz, xz_len), std::slice::from_raw_parts_mut(mask, mask_len)) };
-        check_finite_coordinates(points.iter().flat_map(|p| [p.x, p.y]))?;
-        let w = lock(&w.water);
-        for (m, p) in out.iter_mut().zip(points) {
-            *m = u8::from(w.has_water_at_f64(*p));
-        }
-        Ok(())
-    })
+    // SAFETY: the function's contract; DVec2 is laid out as double[2].
+    unsafe { coverage::<f64, DVec2>(water, xz, xz_len, mask, mask_len, Water::has_water_at_f64) }
 }
 
 /// Parses a scene's TOML text and builds it (water, terrain, meshes) for rendering. On success
