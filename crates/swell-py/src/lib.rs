@@ -81,7 +81,7 @@ impl Water {
                 let outcome = py.check_signals().and_then(|()| match locked(&callback).as_ref() {
                     None => Ok(true),
                     // Only False stops: a callback that returns nothing goes on.
-                    Some(f) => f.call1(py, (fraction,)).map(|r| !r.bind(py).is(&pyo3::types::PyBool::new(py, false))),
+                    Some(f) => f.call1(py, (fraction,)).map(|r| !r.bind(py).is(pyo3::types::PyBool::new(py, false))),
                 });
                 outcome.unwrap_or_else(|e| {
                     *locked(&stop) = Some(e);
@@ -163,6 +163,9 @@ fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, P
     Err(py_err(swell::Error::out_of_range(format!("{name}{at}"), swell::error::Human(value), range)))
 }
 
+/// The displaced grid's positions and normals, float32 `(rows, cols, 3)` each.
+type GridArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray3<f32>>);
+
 /// A shape as Python prints it: `(9, 9, 3)`.
 fn shape_text(shape: &[usize]) -> String {
     format!("({})", shape.iter().map(usize::to_string).collect::<Vec<_>>().join(", "))
@@ -237,7 +240,7 @@ impl Water {
         py: Python<'py>,
         t: f64,
         out: Option<(Bound<'py, PyAny>, Bound<'py, PyAny>)>,
-    ) -> PyResult<(Bound<'py, PyArray3<f32>>, Bound<'py, PyArray3<f32>>)> {
+    ) -> PyResult<GridArrays<'py>> {
         check_time(t)?;
         let (rows, cols) = {
             let w = self.lock();
@@ -330,7 +333,7 @@ impl Water {
                 Ok(n.into_iter().flat_map(|v| v.to_array()).collect::<Vec<f64>>())
             })
             .map_err(|e| self.err(e))?;
-        Ok(normals.into_pyarray(py).reshape(shape)?)
+        normals.into_pyarray(py).reshape(shape)
     }
 
     /// Whether there is water above world (x, z) (m): bool with the broadcast shape of `x` and `z`
@@ -416,7 +419,7 @@ fn render<'py>(
             Ok((r.width as usize, r.height as usize, rgb))
         })
         .map_err(py_err)?;
-    Ok(PyArray1::from_vec(py, rgb).reshape([h, w, 3])?)
+    PyArray1::from_vec(py, rgb).reshape([h, w, 3])
 }
 
 /// The sea state of a spectral scene (`model = "fft"`) at time `t` (s), as `swell stats --time t`
