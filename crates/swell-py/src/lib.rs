@@ -150,11 +150,7 @@ fn real_coordinates<'py>(np: &Bound<'py, PyModule>, name: &str, v: &Bound<'py, P
     let first: usize = np.call_method1("argmin", (&within,))?.extract()?;
     let value: f64 = a.call_method0("ravel")?.get_item(first)?.extract()?;
     let index: Vec<usize> = np.call_method1("unravel_index", (first, a.getattr("shape")?))?.extract()?;
-    let at = if index.is_empty() {
-        String::new()
-    } else {
-        format!("[{}]", index.iter().map(usize::to_string).collect::<Vec<_>>().join(", "))
-    };
+    let at = if index.is_empty() { String::new() } else { format!("[{}]", comma_list(&index)) };
     let range = if value.is_finite() {
         "world metres within 1e9 of the origin (MAX_QUERY_COORDINATE_M)"
     } else {
@@ -168,7 +164,12 @@ type GridArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray3<f32>>);
 
 /// A shape as Python prints it: `(9, 9, 3)`.
 fn shape_text(shape: &[usize]) -> String {
-    format!("({})", shape.iter().map(usize::to_string).collect::<Vec<_>>().join(", "))
+    format!("({})", comma_list(shape))
+}
+
+/// Sizes or indices as `9, 9, 3`: inside a shape's parentheses or an index's brackets.
+fn comma_list(v: &[usize]) -> String {
+    v.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")
 }
 
 /// A caller's `out=` array `name`: a writable, C-contiguous float32 array of `shape`, or a

@@ -240,7 +240,7 @@ impl Water {
     /// and the river are patches, the FFT ocean and the closed forms cover the plane (a lake's
     /// terrain is not consulted: give `extent = "patch"` to bound it).
     pub fn has_water_at(&self, p: Vec2) -> bool {
-        covers(self.extent, &self.placement, &self.grid, p)
+        covers(self.extent, &self.grid, || self.placement.to_local_xz(p).as_dvec2())
     }
 
     /// The time (s) the model's state is at: the `t` of the last query (0 after building).
@@ -346,7 +346,7 @@ impl Water {
         self.advance_to(t)?;
         let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
         each_point(points, out, |&p| {
-            if covers(extent, &placement, grid, p) {
+            if covers(extent, grid, || placement.to_local_xz(p).as_dvec2()) {
                 world_height(model, &placement, p, t)
             } else {
                 f32::NAN
@@ -366,7 +366,7 @@ impl Water {
         self.advance_to(t)?;
         let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
         each_point(points, out, |&p| {
-            if covers(extent, &placement, grid, p) {
+            if covers(extent, grid, || placement.to_local_xz(p).as_dvec2()) {
                 world_normal(model, &placement, p, t)
             } else {
                 Vec3::NAN
@@ -377,7 +377,7 @@ impl Water {
 
     /// [`Water::has_water_at`] of a world point given in double precision.
     pub fn has_water_at_f64(&self, p: DVec2) -> bool {
-        covers_f64(self.extent, &self.placement, &self.grid, p)
+        covers(self.extent, &self.grid, || self.placement.to_local_xz_f64(p))
     }
 
     /// [`Water::heights_at`] of world points given in double precision, for engines whose
@@ -394,7 +394,7 @@ impl Water {
         self.advance_to(t)?;
         let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
         each_point(points, out, |&p| {
-            if covers_f64(extent, &placement, grid, p) {
+            if covers(extent, grid, || placement.to_local_xz_f64(p)) {
                 let at = PreciseLocal::new(model, &placement, p);
                 f64::from(at.world_height(model, &placement, DVec2::ZERO, t))
             } else {
@@ -413,7 +413,7 @@ impl Water {
         self.advance_to(t)?;
         let (model, placement, extent, grid) = (self.model.as_ref(), self.placement, self.extent, &self.grid);
         each_point(points, out, |&p| {
-            if !covers_f64(extent, &placement, grid, p) {
+            if !covers(extent, grid, || placement.to_local_xz_f64(p)) {
                 return DVec3::NAN;
             }
             let at = PreciseLocal::new(model, &placement, p);
@@ -427,23 +427,15 @@ impl Water {
     }
 }
 
-/// [`Water::has_water_at`] from its parts, which the parallel queries share.
-fn covers(extent: WaterExtent, placement: &WaterPlacement, grid: &GridSpec, p: Vec2) -> bool {
+/// [`Water::has_water_at`] from its parts, which the parallel queries of both precisions share:
+/// everywhere for unbounded water, else whether the local point `local` gives (computed only for
+/// a patch) lies in the patch's rectangle, edges included. An f32 local point widened to f64
+/// compares exactly as it would in f32.
+fn covers(extent: WaterExtent, grid: &GridSpec, local: impl FnOnce() -> DVec2) -> bool {
     match extent {
         WaterExtent::Unbounded => true,
         WaterExtent::Patch => {
-            let l = placement.to_local_xz(p);
-            l.cmpge(grid.origin).all() && l.cmple(grid.origin + grid.size).all()
-        }
-    }
-}
-
-/// [`covers`] of a world point in double precision.
-fn covers_f64(extent: WaterExtent, placement: &WaterPlacement, grid: &GridSpec, p: DVec2) -> bool {
-    match extent {
-        WaterExtent::Unbounded => true,
-        WaterExtent::Patch => {
-            let l = placement.to_local_xz_f64(p);
+            let l = local();
             let (lo, hi) = (grid.origin.as_dvec2(), (grid.origin + grid.size).as_dvec2());
             l.cmpge(lo).all() && l.cmple(hi).all()
         }
