@@ -16,7 +16,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat};
 use swell::render::Renderer;
 use swell::scene::{Scene, MAX_IMAGE_SIDE};
-use swell::world::{sea_stats, World};
+use swell::world::{sea_stats, water_sea_stats, World};
 
 /// The name scene texts are known by in error messages (the C API's too).
 const SOURCE: &str = "toml";
@@ -209,6 +209,43 @@ impl Water {
     fn from_toml(py: Python<'_>, text: &str) -> PyResult<Self> {
         let water = py.allow_threads(|| swell::Water::from_toml(text, SOURCE)).map_err(py_err)?;
         Ok(Self::watched(water))
+    }
+
+    /// The FFT ocean of a tabulated directional spectrum `E(f, θ)`: a wavespectra/xarray
+    /// DataArray `efth(freq, dir)` (its coordinates and units read), a list of them (summed), a
+    /// netCDF path as wavespectra writes it, or a numpy array with `freq` (Hz) and `dir`
+    /// (degrees, coming from); any other `[water]` key as a keyword (`grid`, `patch_size`,
+    /// `cascades`, `seed`, `depth`, `size`, `cells`, ...). The scene text is built by
+    /// `swell._spectrum.scene_text` (pure Python) and read as `from_toml` reads any scene.
+    #[staticmethod]
+    #[pyo3(signature = (efth, freq=None, dir=None, **keys))]
+    fn from_spectrum(
+        py: Python<'_>,
+        efth: Bound<'_, PyAny>,
+        freq: Option<Bound<'_, PyAny>>,
+        dir: Option<Bound<'_, PyAny>>,
+        keys: Option<Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let text: String =
+            py.import("swell._spectrum")?.getattr("scene_text")?.call((efth, freq, dir), keys.as_ref())?.extract()?;
+        Self::from_toml(py, &text)
+    }
+
+    /// The sea state of this water's spectral sea (`model = "fft"`) at time `t` (s): what
+    /// `swell stats` prints (Hs, Tp, Dpm, Dspr expected and realised, with wavespectra's
+    /// definitions), as an xarray Dataset when xarray is installed, else a dict.
+    #[pyo3(signature = (t=0.0))]
+    fn stats<'py>(&self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyAny>> {
+        check_time(t)?;
+        let spec = self.lock().spec().clone();
+        let json = py
+            .allow_threads(|| -> swell::Result<String> {
+                let stats = water_sea_stats(&spec, t)?;
+                Ok(serde_json::to_string_pretty(&stats).expect("plain JSON values"))
+            })
+            .map_err(py_err)?;
+        let dict = py.import("json")?.call_method1("loads", (json,))?;
+        py.import("swell._spectrum")?.getattr("stats_result")?.call1((dict,))
     }
 
     /// Reads a scene file (relative heightmap paths are relative to it) and builds its water.

@@ -9,7 +9,12 @@ required for the water queries), answers for any time ``t`` in seconds:
 * ``Water.height_at(x, z, t)`` and ``Water.normal_at(x, z, t)``: the surface above world points,
   numpy broadcasting, computed in parallel with the GIL released;
 * ``render(text, t)``: the frame ``swell render`` draws, as a ``(height, width, 3)`` uint8 array;
-* ``stats(text, t)``: the sea state ``swell stats`` prints, as a dict.
+* ``stats(text, t)``: the sea state ``swell stats`` prints, as a dict;
+* ``Water.from_spectrum(efth, ...)``: the FFT ocean of a measured or modelled directional
+  spectrum E(f, θ), a wavespectra/xarray DataArray (or numpy arrays with their coordinates, or a
+  netCDF file as wavespectra writes it: ``read_spectrum(path)``), and ``Water.stats(t)``: Hs, Tp,
+  Dpm and Dspr of the input and of the realised sea with wavespectra's definitions, an xarray
+  Dataset when xarray is installed (an optional dependency), else a dict.
 
 Conventions: SI units (metres, seconds), right-handed, +Y up, water at rest at y = 0. Answers
 depend only on the scene and ``t``, never on earlier calls. Bad input raises ``ValueError`` with
@@ -19,6 +24,7 @@ spring mesh asked far ahead) stop on Ctrl-C within a second, and ``Water.set_pro
 their progress and may stop them (``Cancelled``).
 """
 
+from ._spectrum import read_spectrum
 from ._swell import Cancelled, Water, __version__, render, stats
 
-__all__ = ["Cancelled", "Water", "render", "stats", "__version__"]
+__all__ = ["Cancelled", "Water", "read_spectrum", "render", "stats", "__version__"]

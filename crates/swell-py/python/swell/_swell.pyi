@@ -25,6 +25,18 @@ class Water:
     def from_toml(text: str) -> "Water":
         """Builds the water of a scene's TOML text. Raises ValueError with the CLI's message."""
     @staticmethod
+    def from_spectrum(efth: Any, freq: Optional[npt.ArrayLike] = None, dir: Optional[npt.ArrayLike] = None, **keys: Any) -> "Water":
+        """The FFT ocean of a tabulated directional spectrum: a wavespectra/xarray DataArray
+        ``efth(freq, dir)`` (m²/Hz/deg, Hz, degrees coming from; units read from the coordinates),
+        a list of them (summed), a netCDF path, or a numpy array with ``freq`` and ``dir``;
+        ``freq_unit=``/``dir_unit=`` for numpy coordinates in other units; any other ``[water]``
+        key as a keyword (``grid``, ``patch_size``, ``cascades``, ``seed``, ``depth``, ``size``,
+        ``cells``, ``spectrum_direction``)."""
+    def stats(self, t: float = 0.0) -> Any:
+        """The sea state of this water's spectral sea at ``t`` (s) as ``swell stats`` prints it:
+        an xarray Dataset (hs, tp, dpm, dspr along ``source`` = expected/realised) when xarray is
+        installed, else a dict."""
+    @staticmethod
     def from_file(path: Union[str, "PathLike[str]"]) -> "Water":
         """Reads a scene file (relative heightmap paths are relative to it) and builds its water."""
     @property

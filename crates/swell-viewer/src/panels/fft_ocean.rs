@@ -100,6 +100,7 @@ pub fn show(ui: &mut Ui, p: &mut FftOceanParams) -> bool {
         }
         keys::edits("water", &["blender"]);
     });
+    changed |= super::spectrum_tables::show(ui, p);
     if let Some(b) = &mut p.blender {
         ui.label("[water.blender]: Blender's names and meaning; they replace the sea keys above");
         let mut table = toml::Table::try_from(&*b).unwrap_or_default();

@@ -32,6 +32,7 @@ pub mod render;
 pub mod river;
 pub mod sines;
 pub mod sky;
+pub mod spectrum_tables;
 pub mod springs;
 pub mod steep_sines;
 pub mod table_fields;
@@ -291,6 +292,17 @@ mod tests {
         blender.water.as_mut().unwrap().surface.yaw_deg = 15.0;
         set_extent_and_lod(blender.water.as_mut().unwrap());
         scenes.push(("fft with [water.blender]".into(), blender));
+        // A measured sea: every table key set (the files are named, not read, by the panel).
+        let mut measured = base.clone();
+        let table = "spectrum = 'table'\nspectrum_direction = 'going-to'\nspectrum_file = 'a.csv'\n\
+            spectrum_table = [{ freq_hz = [0.05, 0.1, 0.2], dir_deg = [0.0, 180.0], efth = [[0.1, 0.0], [1.0, 0.5], [0.2, 0.0]] }, \
+            { freq_rad_s = [0.4, 0.6, 1.0], dir_rad = [0.0, 3.0], efth = [[0.1, 0.0], [1.0, 0.5], [0.2, 0.0]] }]\n\
+            ndbc = { density = 'b.data_spec', alpha1 = 'b.swdir', alpha2 = 'b.swdir2', r1 = 'b.swr1', r2 = 'b.swr2', \
+            time = '2020-06-08 03:50', dir_step_deg = 5.0, estimator = 'weighted' }\n";
+        let mut w = water_with("fft", table);
+        set_extent_and_lod(&mut w);
+        measured.water = Some(w);
+        scenes.push(("fft with spectrum = \"table\"".into(), measured));
         scenes
     }
 

@@ -242,7 +242,7 @@ impl Scene {
         Some(w.surface.extent.unwrap_or_else(|| super::WaterExtent::default_for(&w.model, false)))
     }
 
-    /// Makes relative file paths in the scene (heightmaps, water textures) relative to `dir`, the
+    /// Makes relative file paths in the scene (heightmaps, water textures, spectrum files) relative to `dir`, the
     /// directory of the scene file they were written in.
     pub fn resolve_paths(&mut self, dir: &std::path::Path) {
         if let Some(t) = &mut self.terrain {
@@ -250,6 +250,9 @@ impl Scene {
         }
         if let Some(w) = &mut self.water {
             w.material.resolve_paths(dir);
+            if let super::WaterModelSpec::Fft(p) = &mut w.model {
+                p.resolve_paths(dir);
+            }
         }
     }
 }

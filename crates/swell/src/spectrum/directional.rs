@@ -1,11 +1,12 @@
 //! A wind sea and an optional swell, spread over directions: the `F(kx, kz)` a spectral ocean samples.
 
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
-use super::{Dispersion, Jonswap, Phillips, PiersonMoskowitz, Spreading, Swell, Tma};
+use super::{Dispersion, GriddedSpectrum, Jonswap, Phillips, PiersonMoskowitz, Spreading, Swell, TableSum, Tma};
 
 /// The wind-sea spectrum model.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum WindSea {
     /// Tessendorf's Phillips spectrum (defined in wavenumber).
     Phillips(Phillips),
@@ -15,6 +16,9 @@ pub enum WindSea {
     Jonswap(Jonswap),
     /// Fetch-limited sea in finite depth.
     Tma(Tma),
+    /// Tabulated directional spectra, summed (`spectrum = "table"`): directional already, so the
+    /// spreading and the wind direction do not apply.
+    Table(Arc<TableSum>),
 }
 
 impl WindSea {
@@ -26,6 +30,14 @@ impl WindSea {
         let w = dispersion.omega_f64(k);
         let s = match self {
             WindSea::Phillips(p) => return p.density_k(k),
+            WindSea::Table(t) => {
+                // Φ(k) = ∫ F(k, θ) k dθ, by the midpoint rule over 1° steps (not on a hot path).
+                let n = 360;
+                let dt = TAU / f64::from(n);
+                return (0..n).map(|j| t.wavenumber_density(k, (f64::from(j) + 0.5) * dt, dispersion)).sum::<f64>()
+                    * k
+                    * dt;
+            }
             WindSea::PiersonMoskowitz(p) => p.density(w),
             WindSea::Jonswap(j) => j.density(w),
             WindSea::Tma(t) => t.density(w),
@@ -40,6 +52,14 @@ impl WindSea {
             WindSea::PiersonMoskowitz(p) => p.peak_omega(),
             WindSea::Jonswap(j) => j.peak_omega,
             WindSea::Tma(t) => t.peak_omega,
+            // A table without an interior peak in its frequency spectrum: its middle frequency.
+            WindSea::Table(t) => match t.peak_period() {
+                Some(tp) => TAU / tp,
+                None => {
+                    let g = t.stats_grid();
+                    TAU * g.freq_hz[g.freq_hz.len() / 2]
+                }
+            },
         }
     }
 }
@@ -48,7 +68,7 @@ impl WindSea {
 ///
 /// `F(kx, kz) = Φ(k) D(θ - θ_wind) / k + Φ_swell(k) D_swell(θ - θ_swell) / k` (m⁴/rad²), where
 /// `θ = atan2(kz, kx)` is the direction a wave travels; `∫∫ F dkx dkz` is the height variance m0.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct DirectionalSpectrum {
     /// The wind sea.
     pub wind_sea: WindSea,
@@ -73,9 +93,14 @@ impl DirectionalSpectrum {
         }
         let theta = kz.atan2(kx);
         let w = self.dispersion.omega_f64(k);
-        let wp = self.wind_sea.peak_omega(&self.dispersion);
-        let mut f = self.wind_sea.density_k(k, &self.dispersion)
-            * self.spreading.density(theta - self.wind_direction, w, wp, self.wind_speed);
+        let mut f = match &self.wind_sea {
+            WindSea::Table(t) => t.wavenumber_density(k, theta, &self.dispersion) * k,
+            sea => {
+                let wp = sea.peak_omega(&self.dispersion);
+                sea.density_k(k, &self.dispersion)
+                    * self.spreading.density(theta - self.wind_direction, w, wp, self.wind_speed)
+            }
+        };
         if let Some(s) = &self.swell {
             f += s.density(w)
                 * self.dispersion.group_speed_f64(k)
@@ -98,6 +123,42 @@ impl DirectionalSpectrum {
             }
         }
         TAU / best.1
+    }
+
+    /// This spectrum sampled as wavespectra's `efth(freq, dir)` (m²/Hz/deg, directions the waves
+    /// come from, nautical) at `freq_hz` and `dir_deg`: `E(f, φ) = F(k, θ) k (dk/df) (π/180)` with
+    /// `dk/df = 2π / c_g` and `θ = φ + 90°` the direction of travel in swell's frame.
+    pub fn gridded(&self, freq_hz: Vec<f64>, dir_deg: Vec<f64>) -> GriddedSpectrum {
+        let mut g = GriddedSpectrum::zeros(freq_hz, dir_deg);
+        let nd = g.dir_deg.len();
+        for (i, &f) in g.freq_hz.iter().enumerate() {
+            let k = self.dispersion.wavenumber_f64(TAU * f);
+            let dk_df = TAU / self.dispersion.group_speed_f64(k);
+            for (j, &d) in g.dir_deg.iter().enumerate() {
+                let theta = (d + 90.0).to_radians();
+                let (kx, kz) = (k * theta.cos(), k * theta.sin());
+                g.efth[i * nd + j] = self.density(kx, kz) * k * dk_df * std::f64::consts::PI / 180.0;
+            }
+        }
+        g
+    }
+
+    /// The grid a sea's statistics are taken on: a table's own (or the union of several), else
+    /// frequencies from 0.01 to 2 Hz in steps of 2 % and directions every 5°.
+    pub fn stats_grid(&self) -> GriddedSpectrum {
+        match (&self.wind_sea, &self.swell) {
+            (WindSea::Table(t), None) => t.stats_grid(),
+            (WindSea::Table(t), Some(_)) => {
+                let g = t.stats_grid();
+                self.gridded(g.freq_hz, g.dir_deg)
+            }
+            _ => {
+                let n = (200f64.ln() / 1.02f64.ln()).ceil() as i32;
+                let freq = (0..=n).map(|i| 0.01 * 1.02f64.powi(i)).collect();
+                let dir = (0..72).map(|j| f64::from(j) * 5.0).collect();
+                self.gridded(freq, dir)
+            }
+        }
     }
 }
 

@@ -15,27 +15,41 @@
 //!   (rad/m)²) is what a spectral ocean samples: `∫∫ F dkx dkz = m0`.
 //!
 //! The wind-sea models ([`Phillips`], [`PiersonMoskowitz`], [`Jonswap`], [`Tma`]) and a [`Swell`]
-//! component are composed with a [`Spreading`] into a [`DirectionalSpectrum`].
+//! component are composed with a [`Spreading`] into a [`DirectionalSpectrum`]; a measured sea
+//! comes as tables `E(f, θ)` ([`SpectrumTable`], from CSV or a buoy's files) summed in a
+//! [`TableSum`], and any sea's parameters (Hs, Tp, Dpm, Dspr) are taken on a
+//! [`GriddedSpectrum`] as wavespectra defines them.
 
 mod dispersion;
 
 pub use dispersion::{Dispersion, SURFACE_TENSION, WATER_DENSITY};
 pub use loop_period::{loop_cycles, loop_time, quantize_to_period, LoopFit, MAX_LOOP_SHIFT};
 mod directional;
+mod gridded_spectrum;
 mod jonswap;
 mod loop_period;
+mod ndbc;
 mod phillips;
 mod pierson_moskowitz;
+mod spectrum_csv;
 mod spectrum_kind;
+mod spectrum_table;
 mod spreading;
 mod swell;
 mod tma;
 
 pub use directional::{DirectionalSpectrum, WindSea};
+pub use gridded_spectrum::{GriddedSpectrum, SpectrumStats, TAIL_FROM_HZ};
 pub use jonswap::{Jonswap, JONSWAP_GAMMA, JONSWAP_SIGMA_ABOVE, JONSWAP_SIGMA_BELOW};
+pub use ndbc::{parse_ndbc, NdbcEstimator, NdbcFiles, NdbcLayout, NdbcRecord, MAX_NDBC_FILE_BYTES};
 pub use phillips::{Phillips, PHILLIPS_ALPHA};
 pub use pierson_moskowitz::{u19_5_from_u10, PiersonMoskowitz, PM_ALPHA, PM_BETA};
+pub use spectrum_csv::{parse_spectrum_csv, spectrum_csv, MAX_CSV_ROWS};
 pub use spectrum_kind::SpectrumKind;
+pub use spectrum_table::{
+    DirectionAxis, DirectionConvention, FrequencyAxis, SpectrumTable, TableConvention, TableSum, FREQ_RANGE_HZ,
+    MAX_EFTH,
+};
 pub use spreading::{Spreading, SpreadingFunction};
 pub use swell::Swell;
 pub use tma::{tma_depth_factor, Tma};

@@ -15,5 +15,8 @@ crate::closed_set! {
         /// TMA (Texel, Marsen and Arsloe): JONSWAP in finite depth, needs `depth` (Blender's
         /// "Shallow Water"; Blender's name `texel-marsen-arsloe` is read too).
         Tma = "tma" | "texel-marsen-arsloe",
+        /// A measured or modelled directional spectrum given as tables `E(f, θ)`
+        /// (`spectrum_file`, `[[water.spectrum_table]]`, `[water.ndbc]`), summed.
+        Table = "table",
     }
 }

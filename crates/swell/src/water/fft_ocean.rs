@@ -34,12 +34,15 @@ use serde::Serialize;
 
 pub use self::blender::{BlenderOcean, BLENDER_RESOLUTION_RANGE};
 use self::cascade::{Cascade, CascadeSetup, PAIR_H_DX};
-pub use self::params::{FftOceanParams, SwellParams, FFT_GRID_RANGE, MAX_CASCADES};
+pub use self::params::{
+    FftOceanParams, InlineSpectrumTable, SpectrumFiles, SwellParams, FFT_GRID_RANGE, MAX_CASCADES,
+    MAX_SPECTRUM_FILE_BYTES,
+};
 use super::foam::FoamField;
 use super::wave_model::{WaveModel, INVERSION_MAX_ITERATIONS, INVERSION_TOLERANCE};
 use crate::error::Result;
 use crate::math::{fast_floor, GridSpec};
-use crate::spectrum::{loop_time, DirectionalSpectrum};
+use crate::spectrum::{loop_time, DirectionalSpectrum, GriddedSpectrum};
 
 /// Ratio of the sides of successive cascades: sqrt(19) ≈ 4.36, irrational so the tiles of different
 /// cascades never line up, and large enough that each cascade adds a decade of short waves.
@@ -126,7 +129,7 @@ impl FftOcean {
     pub fn new(params: &FftOceanParams) -> Result<Self> {
         params.validate("water")?;
         let params = &params.resolved();
-        let spectrum = params.spectrum();
+        let spectrum = params.spectrum()?;
         let n = params.grid as usize;
         let count = params.cascades as usize;
         let patches: Vec<f32> =
@@ -330,6 +333,47 @@ impl FftOcean {
             max_height: heights.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             foam_coverage: if self.params.foam { f64::from(self.foam.mean()) } else { 0.0 },
         }
+    }
+
+    /// The realised directional spectrum: every wave of every cascade ([`Cascade::for_each_wave`])
+    /// binned onto `grid`'s frequencies and directions (wavespectra's conventions: Hz, degrees the
+    /// waves come from, m²/Hz/deg). A wave goes to the nearest direction and to the frequency bin
+    /// between the midpoints of its neighbours; the density is the bin's energy over
+    /// `numpy.gradient(freq)` and the direction step, so that wavespectra's sums give back the
+    /// energy. Waves outside the grid's first and last bins are left out.
+    pub fn realised_spectrum(&self, grid: &GriddedSpectrum) -> GriddedSpectrum {
+        let mut out = GriddedSpectrum::zeros(grid.freq_hz.clone(), grid.dir_deg.clone());
+        let f = &out.freq_hz;
+        let (nf, nd) = (f.len(), out.dir_deg.len());
+        if nf < 2 || nd == 0 {
+            return out;
+        }
+        let dd = out.dd();
+        let df = out.df();
+        let lower = f[0] - 0.5 * (f[1] - f[0]);
+        let upper = f[nf - 1] + 0.5 * (f[nf - 1] - f[nf - 2]);
+        let mids: Vec<f64> = f.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        let dispersion = self.spectrum.dispersion;
+        let mut energy = vec![0.0; nf * nd];
+        for c in &self.cascades {
+            c.for_each_wave(|kx, kz, e| {
+                let hz = dispersion.omega_f64(kx.hypot(kz)) / std::f64::consts::TAU;
+                if !(lower..upper).contains(&hz) {
+                    return;
+                }
+                // The bin of the nearest frequency: past every midpoint at or below it.
+                let i = mids.partition_point(|&m| m <= hz);
+                let from = kz.atan2(kx).to_degrees() - 90.0;
+                let j = ((from - out.dir_deg[0]) / dd).round().rem_euclid(nd as f64) as usize % nd;
+                energy[i * nd + j] += e;
+            });
+        }
+        for (i, row) in energy.chunks_exact(nd).enumerate() {
+            for (j, e) in row.iter().enumerate() {
+                out.efth[i * nd + j] = e / (df[i] * dd);
+            }
+        }
+        out
     }
 
     /// (h, Dx, Dz) at rest point (x, z) and any time t, by summing every wave directly in f64.
@@ -570,5 +614,7 @@ impl WaveModel for FftOcean {
     }
 }
 
+#[cfg(test)]
+mod tabulated_tests;
 #[cfg(test)]
 mod tests;

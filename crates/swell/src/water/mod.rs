@@ -25,7 +25,8 @@ mod wave_set;
 pub use airy::{Airy, AiryParams, AiryWave, MAX_AIRY_WAVES};
 pub use fft_ocean::{BlenderOcean, BLENDER_RESOLUTION_RANGE};
 pub use fft_ocean::{
-    FftOcean, FftOceanParams, SeaState, StageTimes, SwellParams, CASCADE_SCALE, FFT_GRID_RANGE, MAX_CASCADES,
+    FftOcean, FftOceanParams, InlineSpectrumTable, SeaState, SpectrumFiles, StageTimes, SwellParams, CASCADE_SCALE,
+    FFT_GRID_RANGE, MAX_CASCADES, MAX_SPECTRUM_FILE_BYTES,
 };
 pub use foam::{
     foam_coverage, foam_update, FoamField, FoamUpdate, LatticeSteps, FOAM_FADE_FLOOR, FOAM_LATTICE_STEP_S, FOAM_RAMP,

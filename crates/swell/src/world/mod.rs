@@ -11,7 +11,7 @@ mod water_query;
 #[allow(clippy::module_inception)]
 mod world;
 
-pub use sea_stats::{sea_stats, SeaStats};
+pub use sea_stats::{sea_stats, water_sea_stats, SeaStats};
 pub use terrain_body::TerrainBody;
 pub use terrain_far_land::FarLand;
 pub use water_query::{Watch, Water, MAX_QUERY_COORDINATE_M, NORMAL_STEP_M, WORK_PER_WATCH};

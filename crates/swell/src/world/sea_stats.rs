@@ -5,7 +5,8 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::mesh::SurfaceMesh;
-use crate::scene::{Scene, WaterModelSpec};
+use crate::scene::{Scene, WaterModelSpec, WaterSpec};
+use crate::spectrum::WindSea;
 use crate::water::{FftOcean, WaveModel};
 
 /// What `swell stats` reports (JSON keys as named).
@@ -19,10 +20,28 @@ pub struct SeaStats {
     pub time_s: f64,
     /// Significant height `4 sqrt(var(y))` of the displaced grid's heights, m.
     pub hs_realised_m: f64,
-    /// The spectrum's own expectation `4 sqrt(m0)` over the wave vectors the cascades hold, m.
+    /// The spectrum's own expectation, m: for a parametric spectrum `4 sqrt(m0)` over the wave
+    /// vectors the cascades hold; for `spectrum = "table"` the input table's Hs as wavespectra
+    /// computes it (`hs()`, with its tail), whatever part of it the cascades hold.
     pub hs_expected_m: f64,
     /// Peak period of the sea's spectrum, s (for TMA, the peak of the finite-depth spectrum).
     pub peak_period_s: f64,
+    /// The input spectrum's smooth peak period (wavespectra's `tp()`), s; `null` without an
+    /// interior peak. For a table, on the table's own grid; for a parametric spectrum, sampled
+    /// from 0.01 to 2 Hz in 2 % steps and every 5°.
+    pub tp_expected_s: Option<f64>,
+    /// The same of the realised sea: every wave the cascades hold, binned on that grid
+    /// ([`FftOcean::realised_spectrum`]), s.
+    pub tp_realised_s: Option<f64>,
+    /// The input's mean direction at the peak (wavespectra's `dpm()`), degrees the waves come
+    /// from, nautical (0 = from north, −Z; 90 = from east, +X), [0, 360).
+    pub dpm_expected_deg: Option<f64>,
+    /// The same of the realised sea, degrees.
+    pub dpm_realised_deg: Option<f64>,
+    /// The input's directional spread (wavespectra's `dspr()`), degrees.
+    pub dspr_expected_deg: Option<f64>,
+    /// The same of the realised sea, degrees.
+    pub dspr_realised_deg: Option<f64>,
     /// Mean height of the displaced grid, m.
     pub mean_height_m: f64,
     /// Lowest height of the displaced grid, m.
@@ -50,6 +69,14 @@ pub fn sea_stats(scene: &Scene, t: f64) -> Result<SeaStats> {
         return Err(Error::out_of_range("time", t, "finite seconds"));
     }
     let water = scene.water.as_ref().ok_or_else(|| Error::invalid("water", "the scene has no [water] table"))?;
+    water_sea_stats(water, t)
+}
+
+/// [`sea_stats`] of a scene's `[water]` alone (what [`crate::world::Water`] keeps).
+pub fn water_sea_stats(water: &WaterSpec, t: f64) -> Result<SeaStats> {
+    if !t.is_finite() {
+        return Err(Error::out_of_range("time", t, "finite seconds"));
+    }
     let WaterModelSpec::Fft(params) = &water.model else {
         return Err(Error::invalid("water.model", "swell stats needs a spectral sea: model = \"fft\""));
     };
@@ -64,11 +91,21 @@ pub fn sea_stats(scene: &Scene, t: f64) -> Result<SeaStats> {
     let variance = heights().map(|h| (h - mean).powi(2)).sum::<f64>() / count;
     let foam = if mesh.has_foam { mesh.foam.iter().map(|&f| f64::from(f)).sum::<f64>() / count } else { 0.0 };
     let state = ocean.sea_state();
+    let axes = ocean.spectrum().stats_grid();
+    let expected = axes.stats();
+    let realised = ocean.realised_spectrum(&axes).stats();
+    let tabulated = matches!(ocean.spectrum().wind_sea, WindSea::Table(_));
     Ok(SeaStats {
         time_s: t,
         hs_realised_m: 4.0 * variance.sqrt(),
-        hs_expected_m: state.hs_expected,
+        hs_expected_m: if tabulated { expected.hs_m } else { state.hs_expected },
         peak_period_s: state.peak_period,
+        tp_expected_s: expected.tp_s,
+        tp_realised_s: realised.tp_s,
+        dpm_expected_deg: expected.dpm_deg,
+        dpm_realised_deg: realised.dpm_deg,
+        dspr_expected_deg: expected.dspr_deg,
+        dspr_realised_deg: realised.dspr_deg,
         mean_height_m: mean,
         min_height_m: heights().fold(f64::INFINITY, f64::min),
         max_height_m: heights().fold(f64::NEG_INFINITY, f64::max),

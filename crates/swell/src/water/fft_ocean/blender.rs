@@ -19,7 +19,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{check_count, check_range, Result};
+use crate::error::{check_count, check_range, Error, Result};
 use crate::spectrum::{SpectrumKind, Spreading};
 
 /// Smallest and largest `resolution`: `resolution²` must give a grid in swell's 16..2048.
@@ -113,6 +113,12 @@ impl BlenderOcean {
         check_range(&k("depth"), self.depth, 0.1, 10_000.0)?;
         check_range(&k("fetch_jonswap"), self.fetch_jonswap, 0.1, 10_000.0)?;
         check_range(&k("sharpen_peak_jonswap"), self.sharpen_peak_jonswap, 0.0, 1.0)?;
+        if self.spectrum == SpectrumKind::Table {
+            return Err(Error::invalid(
+                k("spectrum"),
+                "Blender's Ocean modifier has no tabulated spectrum: give spectrum = \"table\" in [water], without [water.blender]",
+            ));
+        }
         Ok(())
     }
 

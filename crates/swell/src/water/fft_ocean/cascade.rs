@@ -354,6 +354,29 @@ impl Cascade {
         }
     }
 
+    /// Calls `visit(kx, kz, energy)` for every wave the cascade holds, `energy` (m²) being the
+    /// variance that the wave travelling along `(kx, kz)` (rad/m) adds to the height: `2 |h0(k)|²`
+    /// (its conjugate at −k carries the other half). The realised spectrum, exactly.
+    pub fn for_each_wave(&self, mut visit: impl FnMut(f64, f64, f64)) {
+        let n = self.n;
+        for a in 0..n / 2 {
+            let kx = f64::from(self.wavenumbers[a]);
+            // Row 0 holds each of its waves twice (at kz and, as the mirror, at −kz).
+            let weight = if a == 0 { 1.0 } else { 2.0 };
+            for b in 0..n {
+                let kz = f64::from(self.wavenumbers[b]);
+                let idx = a * n + b;
+                let (e, m) = (f64::from(self.h0[idx].norm_sqr()), f64::from(self.h0_mirror[idx].norm_sqr()));
+                if e > 0.0 {
+                    visit(kx, kz, weight * e);
+                }
+                if m > 0.0 {
+                    visit(-kx, -kz, weight * m);
+                }
+            }
+        }
+    }
+
     /// Multiplies every amplitude by `factor` (>= 0), and the expected variance by its square.
     pub fn scale_amplitudes(&mut self, factor: f64) {
         let f = factor as f32;

@@ -5,10 +5,14 @@ use serde::{Deserialize, Serialize};
 use super::blender::BlenderOcean;
 use super::FftOcean;
 use crate::error::{check_count, check_range, Error, Result};
+use std::path::PathBuf;
+use std::sync::Arc;
+
 use crate::spectrum::LoopFit;
 use crate::spectrum::{
-    DirectionalSpectrum, Dispersion, Jonswap, Phillips, PiersonMoskowitz, SpectrumKind, Spreading, SpreadingFunction,
-    Swell, Tma, WindSea,
+    parse_spectrum_csv, DirectionAxis, DirectionConvention, DirectionalSpectrum, Dispersion, FrequencyAxis, Jonswap,
+    Phillips, PiersonMoskowitz, SpectrumKind, SpectrumTable, Spreading, SpreadingFunction, Swell, TableConvention,
+    TableSum, Tma, WindSea,
 };
 use crate::water::{ModelParams, WaveModel};
 
@@ -36,6 +40,104 @@ impl Default for SwellParams {
         Self { height: 1.0, period: 11.0, direction_deg: 30.0, spread: 40.0 }
     }
 }
+
+/// A tabulated spectrum written in the scene (`[[water.spectrum_table]]`): one frequency axis and
+/// one direction axis, each named by its unit, and `efth[frequency][direction]` in m² per unit of
+/// each (m²/Hz/deg with `freq_hz` and `dir_deg`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InlineSpectrumTable {
+    /// Frequencies, Hz, strictly increasing in [0.001, 20].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub freq_hz: Option<Vec<f64>>,
+    /// Angular frequencies, rad/s (instead of `freq_hz`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub freq_rad_s: Option<Vec<f64>>,
+    /// Directions, degrees, strictly increasing and equally spaced, meaning `spectrum_direction`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dir_deg: Option<Vec<f64>>,
+    /// Directions, radians (instead of `dir_deg`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dir_rad: Option<Vec<f64>>,
+    /// Energy density, one row per frequency, one value per direction, >= 0.
+    pub efth: Vec<Vec<f64>>,
+}
+
+impl InlineSpectrumTable {
+    /// The table, with errors naming `key` (`water.spectrum_table[0].`, with the dot).
+    pub fn table(&self, meaning: DirectionConvention, key: &str) -> Result<SpectrumTable> {
+        fn pick<'a>(
+            a: &'a Option<Vec<f64>>,
+            b: &'a Option<Vec<f64>>,
+            names: [&str; 2],
+            key: &str,
+        ) -> Result<(&'a [f64], usize)> {
+            match (a, b) {
+                (Some(v), None) => Ok((v, 0)),
+                (None, Some(v)) => Ok((v, 1)),
+                _ => Err(Error::invalid(
+                    format!("{key}{}", names[0]),
+                    format!("give exactly one of {} and {} (the axis is named by its unit)", names[0], names[1]),
+                )),
+            }
+        }
+        let (freq, fu) = pick(&self.freq_hz, &self.freq_rad_s, ["freq_hz", "freq_rad_s"], key)?;
+        let (dir, du) = pick(&self.dir_deg, &self.dir_rad, ["dir_deg", "dir_rad"], key)?;
+        if self.efth.len() != freq.len() {
+            return Err(Error::invalid(
+                format!("{key}efth"),
+                format!("{} rows for {} frequencies: one row per frequency", self.efth.len(), freq.len()),
+            ));
+        }
+        if let Some((i, row)) = self.efth.iter().enumerate().find(|(_, r)| r.len() != dir.len()) {
+            return Err(Error::invalid(
+                format!("{key}efth[{i}]"),
+                format!("{} values for {} directions: one value per direction", row.len(), dir.len()),
+            ));
+        }
+        let convention = TableConvention {
+            frequency: [FrequencyAxis::Hz, FrequencyAxis::RadPerS][fu],
+            direction: [DirectionAxis::Degrees, DirectionAxis::Radians][du],
+            meaning,
+        };
+        let flat: Vec<f64> = self.efth.iter().flatten().copied().collect();
+        SpectrumTable::new(freq, dir, &flat, convention, key)
+    }
+}
+
+/// One path or a list of paths (`spectrum_file = "a.csv"` or `["a.csv", "b.csv"]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum SpectrumFiles {
+    /// One file.
+    One(PathBuf),
+    /// Several files, summed.
+    Many(Vec<PathBuf>),
+}
+
+impl SpectrumFiles {
+    /// The paths, in order.
+    pub fn paths(&self) -> &[PathBuf] {
+        match self {
+            SpectrumFiles::One(p) => std::slice::from_ref(p),
+            SpectrumFiles::Many(v) => v,
+        }
+    }
+
+    fn paths_mut(&mut self) -> &mut [PathBuf] {
+        match self {
+            SpectrumFiles::One(p) => std::slice::from_mut(p),
+            SpectrumFiles::Many(v) => v,
+        }
+    }
+}
+
+fn is_coming_from(d: &DirectionConvention) -> bool {
+    *d == DirectionConvention::ComingFrom
+}
+
+/// Most bytes a spectrum file may hold.
+pub const MAX_SPECTRUM_FILE_BYTES: u64 = 64 << 20;
 
 /// Parameters of [`super::FftOcean`]. Units are SI except where the key names another (`_deg`, `_km`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -95,6 +197,20 @@ pub struct FftOceanParams {
     /// [`BlenderOcean`]); it replaces the sea keys above.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub blender: Option<BlenderOcean>,
+    /// With `spectrum = "table"`: CSV files of `E(f, θ)` ([`crate::spectrum::parse_spectrum_csv`]),
+    /// one path or a list, relative to the scene file; summed with the other tables.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spectrum_file: Option<SpectrumFiles>,
+    /// With `spectrum = "table"`: tables written in the scene, summed with the files.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub spectrum_table: Vec<InlineSpectrumTable>,
+    /// What the tables' directions mean. Default `coming-from` (nautical, as wavespectra).
+    #[serde(skip_serializing_if = "is_coming_from")]
+    pub spectrum_direction: DirectionConvention,
+    /// With `spectrum = "table"`: a buoy's NDBC spectral files (`[water.ndbc]`), summed with the
+    /// other tables.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ndbc: Option<Box<crate::spectrum::NdbcFiles>>,
 }
 
 impl Default for FftOceanParams {
@@ -120,6 +236,10 @@ impl Default for FftOceanParams {
             foam_fade_s: 2.0,
             swell: None,
             blender: None,
+            spectrum_file: None,
+            spectrum_table: Vec::new(),
+            spectrum_direction: DirectionConvention::ComingFrom,
+            ndbc: None,
         }
     }
 }
@@ -206,7 +326,104 @@ impl FftOceanParams {
             b.validate(&k("blender"))?;
             check_not_both(self, key)?;
         }
+        self.validate_tables(key)
+    }
+
+    /// The table keys: given exactly when `spectrum = "table"`, without the keys that shape a
+    /// parametric wind sea; inline tables checked in full (files are read when the sea is built).
+    fn validate_tables(&self, key: &str) -> Result<()> {
+        let k = |name: &str| format!("{key}.{name}");
+        let has_tables = self.spectrum_file.is_some() || !self.spectrum_table.is_empty() || self.ndbc.is_some();
+        if self.spectrum != SpectrumKind::Table {
+            if has_tables {
+                let given = if self.spectrum_file.is_some() {
+                    "spectrum_file"
+                } else if self.ndbc.is_some() {
+                    "ndbc"
+                } else {
+                    "spectrum_table"
+                };
+                return Err(Error::invalid(
+                    k(given),
+                    format!("a tabulated spectrum needs spectrum = \"table\" (spectrum is \"{}\")", self.spectrum),
+                ));
+            }
+            return Ok(());
+        }
+        if !has_tables {
+            return Err(Error::invalid(
+                k("spectrum"),
+                "\"table\" needs spectrum_file, [[water.spectrum_table]] or [water.ndbc]",
+            ));
+        }
+        let d = FftOceanParams::default();
+        let shaping = [
+            ("fetch_km", self.fetch_km != d.fetch_km),
+            ("gamma", self.gamma != d.gamma),
+            ("small_wave_cutoff", self.small_wave_cutoff != d.small_wave_cutoff),
+            ("spreading", self.spreading != d.spreading),
+        ];
+        if let Some((name, _)) = shaping.iter().find(|(_, given)| *given) {
+            return Err(Error::invalid(
+                k(name),
+                "shapes a parametric wind sea; with spectrum = \"table\" the tables give the whole sea (remove it)",
+            ));
+        }
+        if let Some(files) = &self.spectrum_file {
+            if files.paths().is_empty() {
+                return Err(Error::invalid(k("spectrum_file"), "an empty list: name at least one file"));
+            }
+            if files.paths().len() > crate::limits::MAX_LIST_ITEMS {
+                return Err(Error::out_of_range(
+                    k("spectrum_file"),
+                    format!("{} files", files.paths().len()),
+                    format!("[1, {}] files", crate::limits::MAX_LIST_ITEMS),
+                ));
+            }
+        }
+        for (i, t) in self.spectrum_table.iter().enumerate() {
+            t.table(self.spectrum_direction, &format!("{key}.spectrum_table[{i}]."))?;
+        }
+        if let Some(n) = &self.ndbc {
+            n.validate(&k("ndbc"))?;
+        }
         Ok(())
+    }
+
+    /// Makes the spectrum files' relative paths relative to `dir` (the scene file's directory).
+    pub fn resolve_paths(&mut self, dir: &std::path::Path) {
+        if let Some(files) = &mut self.spectrum_file {
+            for p in files.paths_mut() {
+                if p.is_relative() {
+                    *p = dir.join(&*p);
+                }
+            }
+        }
+        if let Some(n) = &mut self.ndbc {
+            n.resolve_paths(dir);
+        }
+    }
+
+    /// The tables of `spectrum = "table"`, read and checked: the files (errors name the file and
+    /// the line), the inline tables, the buoy's files.
+    pub fn tables(&self) -> Result<TableSum> {
+        let mut tables = Vec::new();
+        for path in self.spectrum_file.iter().flat_map(|f| f.paths()) {
+            let bytes = crate::io::read_input(path, MAX_SPECTRUM_FILE_BYTES)?;
+            let source = path.display().to_string();
+            let text = String::from_utf8(bytes).map_err(|_| Error::Parse {
+                path: source.clone(),
+                message: "not UTF-8 text (a spectrum CSV)".into(),
+            })?;
+            tables.push(parse_spectrum_csv(&text, &source, self.spectrum_direction)?);
+        }
+        for (i, t) in self.spectrum_table.iter().enumerate() {
+            tables.push(t.table(self.spectrum_direction, &format!("water.spectrum_table[{i}]."))?);
+        }
+        if let Some(n) = &self.ndbc {
+            tables.push(n.table("water.ndbc")?);
+        }
+        Ok(TableSum { tables })
     }
 
     /// The parameters the sea is built from: these, or with `[water.blender]` the Blender keys
@@ -238,8 +455,9 @@ impl FftOceanParams {
         }
     }
 
-    /// The directional spectrum these parameters describe (km and degrees converted to SI here).
-    pub fn spectrum(&self) -> DirectionalSpectrum {
+    /// The directional spectrum these parameters describe (km and degrees converted to SI here);
+    /// with `spectrum = "table"` the tables are read here ([`FftOceanParams::tables`]).
+    pub fn spectrum(&self) -> Result<DirectionalSpectrum> {
         let u10 = f64::from(self.wind_speed);
         let fetch = f64::from(self.fetch_km) * 1000.0;
         let gamma = f64::from(self.gamma);
@@ -254,8 +472,9 @@ impl FftOceanParams {
                 Jonswap::from_wind(u10, fetch, gamma),
                 depth.expect("validate() requires depth for tma"),
             )),
+            SpectrumKind::Table => WindSea::Table(Arc::new(self.tables()?)),
         };
-        DirectionalSpectrum {
+        Ok(DirectionalSpectrum {
             wind_sea,
             spreading: self.spreading,
             wind_direction: f64::from(self.wind_direction_deg).to_radians(),
@@ -269,7 +488,7 @@ impl FftOceanParams {
                     f64::from(s.spread),
                 )
             }),
-        }
+        })
     }
 }
 impl ModelParams for FftOceanParams {
@@ -298,7 +517,7 @@ impl ModelParams for FftOceanParams {
     fn loop_warning(&self) -> Option<String> {
         let p = self.resolved();
         let period = f64::from(p.loop_period?);
-        let spectrum = p.spectrum();
+        let spectrum = p.spectrum().ok()?;
         LoopFit::for_spectrum(period, std::f64::consts::TAU / spectrum.peak_period()).warning("water.loop_period")
     }
 }
