@@ -419,3 +419,25 @@ fn double_variants_check_as_the_float_ones_and_answer_as_the_library() {
     );
     unsafe { swell_water_destroy(w) };
 }
+
+/// Issue 36 from C: a measured sea written in the scene text (`spectrum = "table"`) is the same
+/// water as the library's, and a bad table is a scene error naming the field.
+#[test]
+fn a_measured_sea_in_the_scene_text_is_the_library_s() {
+    let table = "[water]\nmodel = 'fft'\nspectrum = 'table'\ngrid = 32\npatch_size = 400.0\nsize = [40.0, 40.0]\ncells = [8, 8]\n\
+                 [[water.spectrum_table]]\nfreq_hz = [0.06, 0.1, 0.15, 0.25]\ndir_deg = [0.0, 90.0, 180.0, 270.0]\n\
+                 efth = [[0.0, 0.0, 0.0, 0.0], [0.5, 2.0, 0.5, 0.0], [0.1, 0.4, 0.1, 0.0], [0.0, 0.0, 0.0, 0.0]]\n";
+    let text = CString::new(table).unwrap();
+    let w = water(&text);
+    let xz = [3.0f32, -7.0];
+    let mut h = [0.0f32; 1];
+    assert_eq!(unsafe { swell_water_heights(w, 2.0, xz.as_ptr(), 2, h.as_mut_ptr(), 1) }, SwellResult::Ok);
+    let mut lib = Water::from_toml(table, "t").unwrap();
+    assert_eq!(h[0], lib.height_at(3.0, -7.0, 2.0).unwrap());
+    assert!(h[0].abs() > 0.0 && h[0].abs() < 5.0, "{h:?}");
+    unsafe { swell_water_destroy(w) };
+    let bad = CString::new(table.replace("[0.5, 2.0", "[-0.5, 2.0")).unwrap();
+    let mut out = null_mut();
+    assert_eq!(unsafe { swell_water_from_toml(bad.as_ptr(), &mut out) }, SwellResult::Scene);
+    assert!(last_error().contains("water.spectrum_table[0].efth[1][0] = -0.5 is outside [0, "), "{}", last_error());
+}
