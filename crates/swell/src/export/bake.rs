@@ -668,16 +668,20 @@ fn foam_model() -> BakeFoam {
         range: [0.0, 1.0],
         model: "jacobian-threshold".into(),
         description: format!(
-            "fraction of the surface around each vertex covered by foam, in [0, 1]: foam forms where the choppy \
-             displacement compresses the surface (the Jacobian of the horizontal displacement of the first \
-             cascade falls below model_params.foam_threshold, coverage ramping up over {ramp} below it) and, \
-             with persistence, fades with time constant model_params.foam_fade_s as (c + {floor}) exp(-t / fade) \
-             - {floor}, vanishing after 4.2 fade times; the remembered foam is sampled on a fixed lattice of \
-             times {step} s apart (the nearest step dividing loop_period_s for a loop), so a frame's foam \
-             depends on its time alone, never on the frames baked before it (crates/swell/src/water/foam.rs)",
-            ramp = crate::water::FOAM_RAMP,
-            floor = crate::water::FOAM_FADE_FLOOR,
+            "fraction of the surface around each vertex covered by foam, in [0, 1]: active whitecaps c = \
+             Phi((model_params.foam_threshold - J) / sigma), the chance that the surface breaks there, where J is the \
+             Jacobian of the horizontal displacement of the first cascade and sigma the spread of the Jacobian of the \
+             waves it does not resolve (the sea's total slope variance as Cox and Munk measured it against the wind, \
+             less the resolved one; at least {min_spread}; Dupuy and Bruneton 2012), so the coverage follows the \
+             wind, not the grid; with persistence, residual foam is produced at the rate c / {active} s and fades \
+             with time constant model_params.foam_fade_s, summed on a fixed lattice of times {step} s apart (the \
+             nearest step dividing loop_period_s for a loop) in blocks that forget foam older than the previous \
+             block (weight below {cut}), so a frame's foam depends on its time alone, never on the frames baked \
+             before it; the value is min(1, max(c, residual)) (crates/swell/src/water/foam.rs)",
+            min_spread = crate::water::FOAM_MIN_SPREAD,
+            active = crate::water::FOAM_ACTIVE_TIME_S,
             step = crate::water::FOAM_LATTICE_STEP_S,
+            cut = crate::water::FOAM_MEMORY_CUT,
         ),
     }
 }

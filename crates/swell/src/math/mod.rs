@@ -1,5 +1,5 @@
-//! Small mathematical building blocks shared by every stage: the regular grid, colour transfer and
-//! seeded gradient noise.
+//! Small mathematical building blocks shared by every stage: the regular grid, colour transfer,
+//! seeded gradient noise and the normal distribution function.
 
 mod color;
 mod fast_exp;
@@ -7,6 +7,7 @@ mod fast_trig;
 mod grid_spec;
 mod isa;
 mod lanes;
+mod normal_cdf;
 mod perlin;
 mod transform;
 
@@ -16,5 +17,6 @@ pub use fast_trig::{fast_floor, fast_sin_cos, reduce_turns, sin_cos_turns, FAST_
 pub use grid_spec::{GridSpec, MAX_GRID_CELLS};
 pub use isa::Isa;
 pub use lanes::{Lanes, Mask, Vec3Lanes, LANES};
+pub use normal_cdf::{normal_cdf, normal_cdf_table, NORMAL_CDF_LAST, NORMAL_CDF_RANGE, NORMAL_CDF_STEPS_PER_UNIT};
 pub use perlin::Perlin;
 pub use transform::{Transform, MAX_SCALE};

@@ -38,7 +38,8 @@ pub use self::params::{
     FftOceanParams, InlineSpectrumTable, SpectrumFiles, SwellParams, FFT_GRID_RANGE, MAX_CASCADES,
     MAX_SPECTRUM_FILE_BYTES,
 };
-use super::foam::FoamField;
+use super::foam::{FoamField, FOAM_MIN_SPREAD};
+use super::slope_spectrum::cox_munk_slope_variance;
 use super::wave_model::{WaveModel, INVERSION_MAX_ITERATIONS, INVERSION_TOLERANCE};
 use crate::error::Result;
 use crate::math::{fast_floor, GridSpec};
@@ -151,7 +152,9 @@ impl FftOcean {
                 })
             })
             .collect();
-        let foam = FoamField::new(n, params.foam_threshold, params.foam_fade_s, params.loop_period.map(f64::from));
+        // The unresolved Jacobian's spread is set below, once the amplitudes are final.
+        let loop_period = params.loop_period.map(f64::from);
+        let foam = FoamField::new(n, params.foam_threshold, FOAM_MIN_SPREAD, params.foam_fade_s, loop_period);
         let mut ocean = Self {
             params: params.clone(),
             spectrum,
@@ -163,6 +166,9 @@ impl FftOcean {
         if let Some(b) = &params.blender {
             ocean.normalise_max_height(b.wave_scale);
         }
+        // After the normalisation: what the first cascade resolves is final.
+        let spread = ocean.unresolved_jacobian_spread();
+        ocean.foam.set_spread(spread);
         // The fields of t = 0, so that the ocean can be sampled at once; the foam (whose lattice
         // may need many steps) waits for the first `advance`, which the time NaN forces.
         ocean.synthesise(0.0);
@@ -183,6 +189,19 @@ impl FftOcean {
         for c in &mut self.cascades {
             c.scale_amplitudes(factor);
         }
+    }
+
+    /// Spread σ (dimensionless) of the Jacobian that the first cascade, where foam lives, does not
+    /// resolve: `λ sqrt(s_total - s_resolved)`, with `s_total` the sea's slope variance that Cox and
+    /// Munk measured at the wind speed and `s_resolved` what the first cascade realises
+    /// (`water/foam.rs`).
+    fn unresolved_jacobian_spread(&self) -> f32 {
+        let total = f64::from(cox_munk_slope_variance(self.params.wind_speed));
+        let mut components = Vec::new();
+        self.cascades[0].slope_components(&mut components);
+        let resolved: f64 = components.iter().map(|c| f64::from(c.1)).sum();
+        let lambda = f64::from(self.params.choppiness);
+        (lambda * lambda * (total - resolved).max(0.0)).sqrt() as f32
     }
 
     /// The parameters, as validated.
@@ -223,7 +242,7 @@ impl FftOcean {
                 for k in steps.indices() {
                     let first = &mut self.cascades[0];
                     first.column_pass(self.foam.lattice_time(k));
-                    first.row_pass(Some(self.foam.lattice_update()));
+                    first.row_pass(Some(self.foam.lattice_update(k)));
                 }
             }
         }
@@ -489,16 +508,7 @@ impl WaveModel for FftOcean {
     /// for the rows that stand for their mirror too (as [`FftOcean::exact_displacement`] sums).
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
         for c in &self.cascades {
-            let dk = std::f64::consts::TAU / f64::from(c.patch);
-            for (nx, nz, h0, hm, _) in c.half_spectrum() {
-                let energy = f64::from(h0.norm_sqr()) + f64::from(hm.norm_sqr());
-                if energy == 0.0 {
-                    continue;
-                }
-                let k = (f64::from(nx) * dk).hypot(f64::from(nz) * dk);
-                let w = if nx == 0 { 1.0 } else { 2.0 };
-                out.push((k as f32, (w * k * k * energy) as f32));
-            }
+            c.slope_components(out);
         }
     }
 

@@ -29,7 +29,8 @@ pub use fft_ocean::{
     FFT_GRID_RANGE, MAX_CASCADES, MAX_SPECTRUM_FILE_BYTES,
 };
 pub use foam::{
-    foam_coverage, foam_update, FoamField, FoamUpdate, LatticeSteps, FOAM_FADE_FLOOR, FOAM_LATTICE_STEP_S, FOAM_RAMP,
+    foam_coverage, FoamField, FoamUpdate, FoamWeights, LatticeSteps, FOAM_ACTIVE_TIME_S, FOAM_LATTICE_STEP_S,
+    FOAM_MEMORY_CUT, FOAM_MIN_SPREAD,
 };
 pub use gerstner::{Gerstner, GerstnerSpec, GerstnerWave, MAX_GERSTNER_WAVES};
 pub use gerstner_tessendorf::{GerstnerTessendorf, TessendorfParams, TessendorfWave, MAX_TESSENDORF_WAVES};
@@ -37,7 +38,7 @@ pub use model_params::{ModelParams, SurfaceFlow};
 pub use noise_waves::{NoiseFrame, NoiseParams, NoiseWaves, MAX_NOISE_OCTAVES};
 pub use radial_wave::{RadialWave, RadialWaveParams};
 pub use river::{River, RiverParams};
-pub use slope_spectrum::{push_wave_slopes, UnresolvedSlopes};
+pub use slope_spectrum::{cox_munk_slope_variance, push_wave_slopes, UnresolvedSlopes};
 pub use spring_mesh::{DropSchedule, Edges, SpringMesh, SpringMeshParams, MAX_SPRING_CELLS, MAX_STEPS_PER_ADVANCE};
 pub use steep_sines::{SteepSineWave, SteepSines, SteepSinesParams, MAX_STEEP_SINE_EXPONENT, MAX_STEEP_SINE_WAVES};
 pub use sum_of_sines::{SineWave, SinesSpec, SumOfSines, MAX_SINE_WAVES};

@@ -75,7 +75,7 @@ use super::jacobian;
 use super::transpose_simd;
 use crate::math::{reduce_turns, sin_cos_turns};
 use crate::spectrum::{loop_cycles, DirectionalSpectrum};
-use crate::water::foam::{foam_coverage, foam_update, FoamUpdate};
+use crate::water::foam::{foam_coverage, FoamUpdate};
 
 /// Rows handled by one parallel task of the row pass.
 const ROWS_PER_TASK: usize = 16;
@@ -377,6 +377,21 @@ impl Cascade {
         }
     }
 
+    /// Appends `(k rad/m, slope variance)` for every stored wave vector: `k² (|h0(k)|² + |h0(-k)|²)`,
+    /// counted twice for the rows that stand for their mirror too (as the synthesis sums them).
+    pub fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
+        let dk = std::f64::consts::TAU / f64::from(self.patch);
+        for (nx, nz, h0, hm, _) in self.half_spectrum() {
+            let energy = f64::from(h0.norm_sqr()) + f64::from(hm.norm_sqr());
+            if energy == 0.0 {
+                continue;
+            }
+            let k = (f64::from(nx) * dk).hypot(f64::from(nz) * dk);
+            let w = if nx == 0 { 1.0 } else { 2.0 };
+            out.push((k as f32, (w * k * k * energy) as f32));
+        }
+    }
+
     /// Multiplies every amplitude by `factor` (>= 0), and the expected variance by its square.
     pub fn scale_amplitudes(&mut self, factor: f64) {
         let f = factor as f32;
@@ -477,23 +492,26 @@ impl Cascade {
             None => tasks.enumerate().for_each(|(task, (((o0, o1), o2), o3))| {
                 body(task, [o0, o1, o2, o3]);
             }),
-            Some(FoamUpdate { out, source, decay, floor, threshold }) => {
+            Some(FoamUpdate { out, first, second, weights: w }) => {
                 tasks.zip(out.par_chunks_mut(chunk)).enumerate().for_each(|(task, ((((o0, o1), o2), o3), foam))| {
                     body(task, [&mut *o0, &mut *o1, &mut *o2, &mut *o3]);
                     let written = [&*o0, &*o1, &*o2, &*o3];
                     let (dxx, jac) = (written[PAIR_HZ_DXX], written[PAIR_DZZ_DXZ]);
-                    let source = source.map(|s| &s[task * chunk..task * chunk + foam.len()]);
+                    let span = task * chunk..task * chunk + foam.len();
+                    let (first, second) = (first.map(|s| &s[span.clone()]), second.map(|s| &s[span]));
                     // Foam follows the Jacobian of the rows this task has just written.
                     let mut done = 0;
                     #[cfg(target_arch = "x86_64")]
                     if avx2 {
                         // SAFETY: `avx2` is set only when the CPU reports AVX2.
-                        done = unsafe { foam_simd::update(foam, source, dxx, jac, threshold, decay, floor) };
+                        done = unsafe { foam_simd::update(foam, first, second, dxx, jac, &w) };
                     }
                     for i in done..foam.len() {
-                        let previous = source.map_or(foam[i], |s| s[i]);
-                        let coverage = foam_coverage(jacobian(dxx[i].im, jac[i].re, jac[i].im), threshold);
-                        foam[i] = foam_update(coverage, previous, decay, floor);
+                        let a = first.map_or(foam[i], |s| s[i]);
+                        let b = second.map_or(0.0, |s| s[i]);
+                        let coverage =
+                            foam_coverage(jacobian(dxx[i].im, jac[i].re, jac[i].im), w.threshold, w.inv_spread);
+                        foam[i] = w.apply(coverage, a, b);
                     }
                 })
             }
