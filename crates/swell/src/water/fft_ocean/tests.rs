@@ -610,8 +610,8 @@ fn steady_whitecap_coverage(u10: f32, grid: u32, patch_size: f32) -> f64 {
 #[test]
 fn whitecap_coverage_follows_monahan_on_every_grid_and_patch() {
     // Monahan and O'Muircheartaigh 1980: W = 3.84e-6 U10^3.41 (fraction of the sea surface).
-    let mut ratios = Vec::new();
     for u in [8.0f32, 12.0, 16.0, 20.0] {
+        let mut ratios = Vec::new();
         let observed = 3.84e-6 * f64::from(u).powf(3.41);
         for grid in [128u32, 256, 512] {
             for patch in [128.0f32, 256.0, 512.0, 1024.0] {
@@ -624,13 +624,12 @@ fn whitecap_coverage_follows_monahan_on_every_grid_and_patch() {
                     c > observed / 2.0 && c < observed * 2.0,
                     "U10 = {u}, {grid}² over {patch} m: {c} vs {observed}"
                 );
-                ratios.push((u, c / observed));
+                ratios.push(c / observed);
             }
         }
         // At one wind, the grid and the patch move the coverage by less than 25 % (measured: at most
         // 16 %, at 8 m/s, the finest grids lowest).
-        let at_u: Vec<f64> = ratios.iter().filter(|r| r.0 == u).map(|r| r.1).collect();
-        let (lo, hi) = at_u.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+        let (lo, hi) = ratios.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
         assert!(hi / lo < 1.25, "U10 = {u}: ratios from {lo:.3} to {hi:.3}");
     }
 }
