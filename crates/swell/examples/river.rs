@@ -14,7 +14,7 @@ fn main() -> swell::Result<()> {
     // Start from a preset for the camera, lights and sky, then set the model through the library.
     let mut scene = preset("river")?;
     let water = scene.water.as_mut().expect("the preset has water");
-    // Wider swings and visible ripples; the renderer slides the water texture by River::uv_offset(t).
+    // Wider swings and stronger ripples; the renderer slides the water texture by River::uv_offset(t).
     let params = RiverParams {
         left_amplitude: 0.7,
         right_amplitude: 0.6,

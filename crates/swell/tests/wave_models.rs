@@ -114,7 +114,14 @@ fn models(calm: bool, t: f64) -> Vec<(&'static str, Box<dyn WaveModel>)> {
         ),
         ("noise", Box::new(NoiseWaves::new(NoiseParams { amplitude: a(0.5), ..Default::default() }).unwrap())),
         ("springs", Box::new(springs)),
-        ("river", Box::new(River::new(RiverParams { ripple_amplitude: a(0.02), ..Default::default() }).unwrap())),
+        // Ripples from 2.5 m, so the 0.5 m grid holds them all (shorter ones leave the mesh, not the query).
+        (
+            "river",
+            Box::new(
+                River::new(RiverParams { ripple_amplitude: a(0.02), ripple_wavelength: 2.5, ..Default::default() })
+                    .unwrap(),
+            ),
+        ),
     ]
 }
 
