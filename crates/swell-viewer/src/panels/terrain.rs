@@ -161,10 +161,22 @@ pub fn show_material(ui: &mut Ui, m: &mut TerrainMaterial) -> bool {
         changed |= fields::number(ui, "snow height", &mut m.snow_height, 0.1, " m");
         changed |= fields::number(ui, "rock slope", &mut m.rock_slope_deg, 0.5, " deg");
         changed |= fields::number(ui, "band transition", &mut m.transition, 0.05, " m");
+        changed |= fields::number(ui, "wet up to", &mut m.wet_height, 0.05, " m");
     });
     key_paths::edits(
         "terrain.material",
-        &["shading", "sand", "grass", "rock", "snow", "sand_height", "snow_height", "rock_slope_deg", "transition"],
+        &[
+            "shading",
+            "sand",
+            "grass",
+            "rock",
+            "snow",
+            "sand_height",
+            "snow_height",
+            "rock_slope_deg",
+            "transition",
+            "wet_height",
+        ],
     );
     changed
 }

@@ -121,6 +121,7 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
         changed |= fields::number(ui, "texture scale", &mut m.texture_scale, 0.05, " m");
         changed |= fields::number(ui, "texture mix", &mut m.texture_mix, 0.01, "");
         changed |= fields::vec2_xz(ui, "flow velocity (m/s)", &mut m.flow_velocity, 0.01);
+        changed |= fields::number(ui, "shore foam", &mut m.shore_foam, 0.01, "");
     });
     keys::edits(
         "water.material",
@@ -145,6 +146,7 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
             "texture_scale",
             "texture_mix",
             "flow_velocity",
+            "shore_foam",
         ],
     );
     changed

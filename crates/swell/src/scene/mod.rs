@@ -28,7 +28,7 @@ pub use scene::{Scene, MAX_LIGHTS, SCENE_VERSION};
 pub use shading_model::Shading;
 pub use sky::{Sky, TURBIDITY_RANGE};
 pub use sky_model::SkyModel;
-pub use terrain_material::TerrainMaterial;
+pub use terrain_material::{TerrainMaterial, WET_DARKENING};
 pub use terrain_spec::{
     HeightmapSpec, TerrainGenerator, TerrainSpec, DEFAULT_TERRAIN_EXTENT, DEFAULT_TERRAIN_SIZE, TERRAIN_GENERATORS,
 };

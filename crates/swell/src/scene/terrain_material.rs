@@ -32,6 +32,11 @@ pub struct TerrainMaterial {
     pub rock_slope_deg: f32,
     /// Width (m) of the blend between height bands, > 0. Default 1.
     pub transition: f32,
+    /// Height (m) above the water at rest, in [0, 100], up to which the ground is wet and
+    /// darker: the swash zone that the waves' run-up keeps wet, and everything under the water.
+    /// Set it to the run-up (about the waves' crest height at the shore). 0 turns the band off;
+    /// a scene without water has none. Default 0.5.
+    pub wet_height: f32,
 }
 
 impl Default for TerrainMaterial {
@@ -46,12 +51,20 @@ impl Default for TerrainMaterial {
             snow_height: 40.0,
             rock_slope_deg: 35.0,
             transition: 1.0,
+            wet_height: 0.5,
         }
     }
 }
 
 /// Half-width (degrees) of the blend between grass or snow and rock around `rock_slope_deg`.
 const ROCK_BLEND_DEG: f32 = 5.0;
+
+/// Albedo of wet ground over that of the same ground dry: water filling the pores and coating
+/// the grains traps light by internal reflection (Twomey, Bohren and Mergenthaler 1986 measure
+/// wet sand at roughly half to two thirds of its dry reflectance).
+pub const WET_DARKENING: f32 = 0.6;
+/// Fraction of `wet_height` where the wet band starts to dry out towards its top edge.
+const WET_FADE_FROM: f32 = 0.6;
 
 fn smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
     let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
@@ -69,7 +82,8 @@ impl TerrainMaterial {
         check_range(&format!("{key}.sand_height"), self.sand_height, -1.0e5, 1.0e5)?;
         check_range(&format!("{key}.snow_height"), self.snow_height, self.sand_height, 1.0e5)?;
         check_range(&format!("{key}.rock_slope_deg"), self.rock_slope_deg, 0.0, 90.0)?;
-        check_positive(&format!("{key}.transition"), self.transition)
+        check_positive(&format!("{key}.transition"), self.transition)?;
+        check_range(&format!("{key}.wet_height"), self.wet_height, 0.0, 100.0)
     }
 
     /// Surface colour (albedo) at world height `y` (m) with unit normal `n`: sand, grass, snow by
@@ -83,6 +97,17 @@ impl TerrainMaterial {
         let slope_deg = n.y.clamp(-1.0, 1.0).abs().acos().to_degrees();
         let rock = smoothstep(self.rock_slope_deg - ROCK_BLEND_DEG, self.rock_slope_deg + ROCK_BLEND_DEG, slope_deg);
         // Sand stays sand however steep (underwater banks): rock replaces only land cover.
-        by_height.lerp(self.rock, rock * grass)
+        let dry = by_height.lerp(self.rock, rock * grass);
+        dry * (1.0 - (1.0 - WET_DARKENING) * self.wetness(y))
+    }
+
+    /// How wet the ground at world height `y` is, [0, 1]: 1 up to `WET_FADE_FROM` of
+    /// `wet_height` (and everywhere under the water at rest), drying smoothly to 0 at
+    /// `wet_height`; 0 everywhere when `wet_height` is 0.
+    pub fn wetness(&self, y: f32) -> f32 {
+        if self.wet_height <= 0.0 {
+            return 0.0;
+        }
+        1.0 - smoothstep(WET_FADE_FROM * self.wet_height, self.wet_height, y)
     }
 }

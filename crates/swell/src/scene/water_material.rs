@@ -80,6 +80,11 @@ pub struct WaterMaterial {
     /// Velocity at which the texture slides over the surface, [x, z] m/s (paper 004's flowing
     /// river). Default [0, 0].
     pub flow_velocity: Vec2,
+    /// Strength of the foam that shallow water makes, in [0, 1]; 0 turns it off. Where a bottom
+    /// (terrain or `bottom_depth`) is in sight, crests whiten where they reach the depth-limited
+    /// breaking height (breaker index 0.78, McCowan 1894): the surf zone, and the swash a wave
+    /// pushes up the beach; both move with the waves. Default 1.
+    pub shore_foam: f32,
 }
 
 impl Default for WaterMaterial {
@@ -105,6 +110,7 @@ impl Default for WaterMaterial {
             texture_scale: 8.0,
             texture_mix: 1.0,
             flow_velocity: Vec2::ZERO,
+            shore_foam: 1.0,
         }
     }
 }
@@ -138,6 +144,7 @@ impl WaterMaterial {
         }
         check_positive(&format!("{key}.texture_scale"), self.texture_scale)?;
         check_range(&format!("{key}.texture_mix"), self.texture_mix, 0.0, 1.0)?;
+        check_range(&format!("{key}.shore_foam"), self.shore_foam, 0.0, 1.0)?;
         check_finite_vec(&format!("{key}.flow_velocity"), &self.flow_velocity.to_array())?;
         if let Some(t) = &self.texture {
             if t.trim().is_empty() {

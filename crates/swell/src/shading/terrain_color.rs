@@ -24,7 +24,7 @@ mod tests {
 
     #[test]
     fn bands_follow_height_and_slope() {
-        let m = TerrainMaterial::default();
+        let m = TerrainMaterial { wet_height: 0.0, ..Default::default() };
         assert_eq!(m.albedo(-3.0, Vec3::Y), m.sand);
         assert_eq!(m.albedo(10.0, Vec3::Y), m.grass);
         assert_eq!(m.albedo(60.0, Vec3::Y), m.snow);
@@ -39,9 +39,36 @@ mod tests {
     fn flat_light_from_above_follows_the_face_cosine() {
         let sky = crate::shading::SkyRadiance::new(&Sky::default());
         let env = Environment { lights: &[], ambient: Vec3::ZERO, sky: &sky, eye: Vec3::ZERO, sun: None, time: 0.0 };
-        let m = TerrainMaterial { sand: Vec3::ONE, grass: Vec3::ONE, rock: Vec3::ONE, ..Default::default() };
+        let m = TerrainMaterial {
+            sand: Vec3::ONE,
+            grass: Vec3::ONE,
+            rock: Vec3::ONE,
+            wet_height: 0.0,
+            ..Default::default()
+        };
         let tilted = Vec3::new(0.6, 0.8, 0.0);
         assert!((shade_terrain(&env, &m, Vec3::ZERO, tilted) - Vec3::splat(0.8)).length() < 1e-6);
         assert_eq!(shade_terrain(&env, &m, Vec3::ZERO, Vec3::Y), Vec3::ONE);
+    }
+
+    #[test]
+    fn ground_the_waves_wet_is_darker_up_to_wet_height() {
+        use crate::scene::WET_DARKENING;
+        let m = TerrainMaterial { wet_height: 1.2, ..Default::default() };
+        let dry = TerrainMaterial { wet_height: 0.0, ..m };
+        // Under the water and low in the swash zone: wet sand.
+        for y in [-3.0, 0.0, 0.5] {
+            assert!((m.albedo(y, Vec3::Y) - WET_DARKENING * dry.albedo(y, Vec3::Y)).length() < 1e-6, "{y}");
+        }
+        // Above the run-up: as dry; between, drying out without a step.
+        assert_eq!(m.albedo(1.2, Vec3::Y), dry.albedo(1.2, Vec3::Y));
+        let mut last = m.wetness(0.6);
+        for k in 1..=60 {
+            let w = m.wetness(0.6 + k as f32 * 0.01);
+            assert!(w <= last && last - w < 0.05, "{last} -> {w}");
+            last = w;
+        }
+        let e = TerrainMaterial { wet_height: -1.0, ..m }.validate("terrain.material").unwrap_err().to_string();
+        assert!(e.contains("terrain.material.wet_height") && e.contains("-1"), "{e}");
     }
 }

@@ -139,6 +139,42 @@ const FOAM_DETAIL_START_TILES: f32 = 15.0;
 /// Distance, in tiles, over which that hand-over completes.
 const FOAM_DETAIL_FADE_TILES: f32 = 30.0;
 
+/// Depth of water (m) over which the surface's reflection and glitter give way to the bottom at
+/// the water's edge: a film a few centimetres thick shows the wet sand under it, so the edge has
+/// the land's colour on both sides and draws no line (no stair steps where the water's triangles
+/// cut the terrain's).
+const SOFT_EDGE_DEPTH: f32 = 0.3;
+/// Breaker index γ: a wave breaks in water shallower than its height over γ (McCowan 1894, the
+/// solitary wave's limit H_b = 0.78 d_b, the usual rule for depth-limited breaking).
+const BREAKER_INDEX: f32 = 0.78;
+/// Fraction of the breaking height at which a crest starts to whiten (white water spreads down
+/// the front of a wave before the crest is at the limit).
+const BREAKING_ONSET: f32 = 0.6;
+
+/// `smoothstep(a, b, x)` per lane (0 below a, 1 above b, C1 between); infinite x saturates.
+#[inline(always)]
+fn smoothstep_lanes(a: f32, b: f32, x: Lanes) -> Lanes {
+    let t = ((x - a) * (1.0 / (b - a))).max(0.0).min(1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Foam that shallow water makes, [0, 1] per lane, for surface points at height `y` (m, water at
+/// rest is 0) over `depth` metres of water (infinite where no bottom is in sight): crests whiten
+/// where their height, taken as half the wave height, passes [`BREAKING_ONSET`] of the
+/// depth-limited breaking height `γ d0 / 2` (d0 the depth at rest, [`BREAKER_INDEX`]). So the
+/// foam follows the waves: crests break as they run into the shallows, and the water a crest
+/// pushes up the beach (over ground above the rest level, d0 <= 0) is all swash foam, moving up
+/// and down with each wave; troughs and calm shallows stay clear. It fades out over the last
+/// [`SOFT_EDGE_DEPTH`] of water with the surface itself. Scaled by `strength`.
+#[inline(always)]
+fn shore_foam_lanes(strength: f32, y: Lanes, depth: Lanes) -> Lanes {
+    // In deep water, or with no bottom in sight (infinite depth), the ratio is 0.
+    let rest_depth = (depth - y).max(1e-3);
+    let height_ratio = y.max(0.0) * (2.0 / BREAKER_INDEX) / rest_depth;
+    let breaking = smoothstep_lanes(BREAKING_ONSET, 1.0, height_ratio);
+    breaking * smoothstep_lanes(0.0, SOFT_EDGE_DEPTH, depth) * strength
+}
+
 /// Radiance leaving water point `p` (world m) with unit normal `n` towards the eye; `foam` in
 /// [0, 1] whitens it.
 ///
@@ -217,16 +253,23 @@ pub fn shade_water_lanes(
     let n = points.normal.dot(to_eye).lt(0.0).select3(-points.normal, points.normal);
     let cos_i = n.dot(to_eye);
     let unresolved = points.unresolved.max(0.0);
-    let f = fresnel_over_slopes_lanes(m, cos_i, unresolved);
+    let (transmitted, depth) = transmitted_lanes(env, look, p, n, to_eye, live);
+    // At the water's edge the surface fades into the bottom it covers (1 away from the shore).
+    let shore = depth.lt(f32::INFINITY).any();
+    let edge = if shore { smoothstep_lanes(0.0, SOFT_EDGE_DEPTH, depth) } else { Lanes::splat(1.0) };
+    let f = fresnel_over_slopes_lanes(m, cos_i, unresolved) * edge;
     let sky = reflected_lanes(env, look, p, n, to_eye, cos_i, unresolved, live);
-    let transmitted = transmitted_lanes(env, look, p, n, to_eye, live);
 
     let mut water = sky.scale(f) + transmitted.scale(1.0 - f);
     if m.specular > 0.0 {
         let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
-        water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular);
+        water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular * edge);
     }
-    let foam = points.foam;
+    let foam = if shore && m.shore_foam > 0.0 {
+        points.foam.max(shore_foam_lanes(m.shore_foam, p.y, depth))
+    } else {
+        points.foam
+    };
     if foam.gt(0.0).any() {
         let foam_light = lambert_lanes(env, p, Vec3Lanes::splat(Vec3::Y)) * m.foam_color;
         let cover = foam_cover_lanes(env, look, p, foam.min(1.0));
@@ -295,7 +338,8 @@ fn reflected_lanes(
 
 /// The light that leaves the water body towards the eye: the lit body colour (or its texture),
 /// where a seabed is in reach the bottom seen through the water with Beer-Lambert absorption, and
-/// the backlit crests' scattering.
+/// the backlit crests' scattering; and the depth of water over that bottom (the point's height
+/// less the bottom's where the refracted ray meets it, m; infinite where none is in sight).
 #[inline(always)]
 fn transmitted_lanes(
     env: &Environment,
@@ -304,7 +348,7 @@ fn transmitted_lanes(
     n: Vec3Lanes,
     to_eye: Vec3Lanes,
     live: usize,
-) -> Vec3Lanes {
+) -> (Vec3Lanes, Lanes) {
     let m = look.material;
     let (lit, scatter) = light_in_water_lanes(env, m, p, n, to_eye);
     let body = match look.texture {
@@ -312,6 +356,7 @@ fn transmitted_lanes(
         None => lit * m.color,
     };
     let mut transmitted = body;
+    let mut depth = Lanes::splat(f32::INFINITY);
     // Open water has no bottom to refract to.
     if look.seabed.anywhere() {
         let refracted = refract_lanes(-to_eye, n, 1.0 / m.refractive_index);
@@ -322,6 +367,7 @@ fn transmitted_lanes(
                 continue;
             }
             if let Some((path, height, albedo)) = bottom_hit(look.seabed, p.lane(i), t) {
+                depth.0[i] = p.y.0[i] - height;
                 let bottom = albedo * bottom_irradiance(env, m, p.y.0[i].max(0.0) - height);
                 let transmittance = (-m.absorption * path).exp();
                 let v = bottom * transmittance + body.lane(i) * (Vec3::ONE - transmittance);
@@ -333,7 +379,7 @@ fn transmitted_lanes(
     if m.scatter_strength > 0.0 {
         transmitted = transmitted + scatter;
     }
-    transmitted
+    (transmitted, depth)
 }
 
 /// A run of water points to shade together ([`shade_water_run`]): point `i` of `len`, with its
@@ -648,6 +694,56 @@ mod tests {
         assert!(mid.x / shallow.x < mid.z / shallow.z);
         // Far below, nothing of the bottom is left: the water looks deep.
         assert!((far - deep).abs().max_element() < 1e-3, "{far} vs {deep}");
+    }
+
+    #[test]
+    fn shallow_water_foams_at_breaking_crests_and_along_the_edge_and_nowhere_deep() {
+        let foam = |y: f32, depth: f32| shore_foam_lanes(1.0, Lanes::splat(y), Lanes::splat(depth)).0[0];
+        // Deep water, or no bottom in sight: none, whatever the crest.
+        assert_eq!(foam(1.0, 11.0), 0.0);
+        assert_eq!(foam(0.0, f32::INFINITY), 0.0);
+        assert_eq!(foam(3.0, f32::INFINITY), 0.0);
+        // A crest 1 m up over 1.5 m of water at rest (wave height 2 m > 0.78 x 1.5 m) breaks;
+        // the same crest over 4 m does not (2 m < 0.6 x 0.78 x 4 m... just under the onset).
+        assert_eq!(foam(1.0, 2.5), 1.0);
+        assert_eq!(foam(0.9, 0.9 + 4.0), 0.0);
+        // A trough over the same shallows does not, nor calm shallow water (a wading pool).
+        assert_eq!(foam(-0.5, 1.0), 0.0);
+        assert_eq!(foam(0.0, 0.4), 0.0);
+        // Swash: a crest 0.3 m up running over a beach 0.1 m above the rest level foams...
+        assert_eq!(foam(0.3, 0.3 - 0.1 + 0.1), 1.0);
+        // ...and gives way over the last few centimetres of water, with the surface.
+        assert_eq!(foam(0.3, 0.0), 0.0);
+        assert_eq!(foam(0.3, -0.2), 0.0);
+        assert!(foam(0.3, 0.05) < foam(0.3, 0.15) && foam(0.3, 0.15) < foam(0.3, 0.3));
+        // Strength scales it, 0 turns it off.
+        assert_eq!(shore_foam_lanes(0.5, Lanes::splat(1.0), Lanes::splat(2.5)).0[0], 0.5);
+        assert_eq!(shore_foam_lanes(0.0, Lanes::splat(1.0), Lanes::splat(2.5)).0[0], 0.0);
+    }
+
+    #[test]
+    fn at_the_waters_edge_the_surface_shows_only_the_bottom_it_covers() {
+        let lights = [Light::Directional { direction: Vec3::new(0.3, -1.0, 0.0), color: Vec3::ONE, intensity: 1.0 }];
+        let (blue, red) = (Sky::default(), Sky { horizon: Vec3::new(1.0, 0.0, 0.0), ..Sky::default() });
+        let material = WaterMaterial { shore_foam: 0.0, ..WaterMaterial::default() };
+        let shade_over = |sky: &Sky, depth: f32| {
+            let mut env = env(&lights, sky);
+            env.eye = Vec3::new(0.0, 2.0, 20.0);
+            let bottom = FlatBottom { height: -depth, albedo: Vec3::new(0.5, 0.4, 0.3) };
+            let look = WaterLook::new(&material, &bottom, None, 0.0);
+            shade_water(&env, &look, Lobe::BlinnPhong, Vec3::ZERO, Vec3::Y, 0.0)
+        };
+        // At the edge the water reflects nothing of the sky: the same colour under any sky, and
+        // next to nothing a millimetre out...
+        assert_eq!(shade_over(&blue, 0.0), shade_over(&red, 0.0));
+        assert!((shade_over(&blue, 0.001) - shade_over(&red, 0.001)).abs().max_element() < 1e-4);
+        // ...while a metre of it mirrors the sky's horizon.
+        assert!((shade_over(&red, 1.0) - shade_over(&blue, 1.0)).x > 0.05);
+        // The hand-over is gradual: no step in the colour with depth.
+        let steps: Vec<Vec3> = (0..=40).map(|k| shade_over(&red, k as f32 * 0.01)).collect();
+        for pair in steps.windows(2) {
+            assert!((pair[1] - pair[0]).abs().max_element() < 0.02, "{pair:?}");
+        }
     }
 
     #[test]

@@ -67,10 +67,14 @@ impl World {
     /// reuse these buffers).
     pub fn new(scene: Scene) -> Result<Self> {
         scene.validate()?;
-        let terrain = match &scene.terrain {
+        let mut terrain = match &scene.terrain {
             Some(spec) => Some(TerrainBody::new(spec)?),
             None => None,
         };
+        // Ground is wet only where there is water to wet it.
+        if let (Some(t), None) = (terrain.as_mut(), &scene.water) {
+            t.material.wet_height = 0.0;
+        }
         let water = match &scene.water {
             Some(spec) => {
                 let model = spec.model.build()?;
