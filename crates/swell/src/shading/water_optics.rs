@@ -158,6 +158,13 @@ fn smoothstep_lanes(a: f32, b: f32, x: Lanes) -> Lanes {
     t * t * (3.0 - 2.0 * t)
 }
 
+/// How much of the surface shows over `depth` metres of water, per lane: 0 at the water's edge,
+/// rising to 1 over [`SOFT_EDGE_DEPTH`] (infinite depth, no bottom in sight, gives 1).
+#[inline(always)]
+fn edge_lanes(depth: Lanes) -> Lanes {
+    smoothstep_lanes(0.0, SOFT_EDGE_DEPTH, depth)
+}
+
 /// Foam that shallow water makes, [0, 1] per lane, for surface points at height `y` (m, water at
 /// rest is 0) over `depth` metres of water (infinite where no bottom is in sight): crests whiten
 /// where their height, taken as half the wave height, passes [`BREAKING_ONSET`] of the
@@ -165,14 +172,15 @@ fn smoothstep_lanes(a: f32, b: f32, x: Lanes) -> Lanes {
 /// foam follows the waves: crests break as they run into the shallows, and the water a crest
 /// pushes up the beach (over ground above the rest level, d0 <= 0) is all swash foam, moving up
 /// and down with each wave; troughs and calm shallows stay clear. It fades out over the last
-/// [`SOFT_EDGE_DEPTH`] of water with the surface itself. Scaled by `strength`.
+/// [`SOFT_EDGE_DEPTH`] of water with the surface itself (`edge`, [`edge_lanes`] of `depth`, passed
+/// in because the shading has it already). Scaled by `strength`.
 #[inline(always)]
-fn shore_foam_lanes(strength: f32, y: Lanes, depth: Lanes) -> Lanes {
+fn shore_foam_lanes(strength: f32, y: Lanes, depth: Lanes, edge: Lanes) -> Lanes {
     // In deep water, or with no bottom in sight (infinite depth), the ratio is 0.
     let rest_depth = (depth - y).max(1e-3);
     let height_ratio = y.max(0.0) * (2.0 / BREAKER_INDEX) / rest_depth;
     let breaking = smoothstep_lanes(BREAKING_ONSET, 1.0, height_ratio);
-    breaking * smoothstep_lanes(0.0, SOFT_EDGE_DEPTH, depth) * strength
+    breaking * edge * strength
 }
 
 /// Radiance leaving water point `p` (world m) with unit normal `n` towards the eye; `foam` in
@@ -256,7 +264,7 @@ pub fn shade_water_lanes(
     let (transmitted, depth) = transmitted_lanes(env, look, p, n, to_eye, live);
     // At the water's edge the surface fades into the bottom it covers (1 away from the shore).
     let shore = depth.lt(f32::INFINITY).any();
-    let edge = if shore { smoothstep_lanes(0.0, SOFT_EDGE_DEPTH, depth) } else { Lanes::splat(1.0) };
+    let edge = if shore { edge_lanes(depth) } else { Lanes::splat(1.0) };
     let f = fresnel_over_slopes_lanes(m, cos_i, unresolved) * edge;
     let sky = reflected_lanes(env, look, p, n, to_eye, cos_i, unresolved, live);
 
@@ -266,7 +274,7 @@ pub fn shade_water_lanes(
         water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular * edge);
     }
     let foam = if shore && m.shore_foam > 0.0 {
-        points.foam.max(shore_foam_lanes(m.shore_foam, p.y, depth))
+        points.foam.max(shore_foam_lanes(m.shore_foam, p.y, depth, edge))
     } else {
         points.foam
     };
@@ -698,7 +706,11 @@ mod tests {
 
     #[test]
     fn shallow_water_foams_at_breaking_crests_and_along_the_edge_and_nowhere_deep() {
-        let foam = |y: f32, depth: f32| shore_foam_lanes(1.0, Lanes::splat(y), Lanes::splat(depth)).0[0];
+        let shore = |strength: f32, y: f32, depth: f32| {
+            let depth = Lanes::splat(depth);
+            shore_foam_lanes(strength, Lanes::splat(y), depth, edge_lanes(depth)).0[0]
+        };
+        let foam = |y: f32, depth: f32| shore(1.0, y, depth);
         // Deep water, or no bottom in sight: none, whatever the crest.
         assert_eq!(foam(1.0, 11.0), 0.0);
         assert_eq!(foam(0.0, f32::INFINITY), 0.0);
@@ -717,8 +729,8 @@ mod tests {
         assert_eq!(foam(0.3, -0.2), 0.0);
         assert!(foam(0.3, 0.05) < foam(0.3, 0.15) && foam(0.3, 0.15) < foam(0.3, 0.3));
         // Strength scales it, 0 turns it off.
-        assert_eq!(shore_foam_lanes(0.5, Lanes::splat(1.0), Lanes::splat(2.5)).0[0], 0.5);
-        assert_eq!(shore_foam_lanes(0.0, Lanes::splat(1.0), Lanes::splat(2.5)).0[0], 0.0);
+        assert_eq!(shore(0.5, 1.0, 2.5), 0.5);
+        assert_eq!(shore(0.0, 1.0, 2.5), 0.0);
     }
 
     #[test]

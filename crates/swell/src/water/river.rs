@@ -277,7 +277,8 @@ impl ModelParams for RiverParams {
 }
 
 impl WaveModel for River {
-    /// Nothing: a finite river whose ripples are resolved wherever it is drawn.
+    /// Nothing: the river is drawn as its own patch, never as the sea's rings, so it has no far
+    /// field to filter; ripples its grid cannot hold leave the mesh in `evaluate` instead.
     fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
 
     /// Column i of row j lies at fraction `u = i / cells_x` of the way from the left to the right
