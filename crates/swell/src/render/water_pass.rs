@@ -65,7 +65,9 @@ pub fn draw(
     let look = WaterLook::new(material, seabed, water.texture.as_ref(), frame.env.time)
         .with_reflection(reflection)
         .with_foam(Some(&water.foam_pattern))
-        .with_foam_streaks(wind_in_world(water), material.foam_streak);
+        .with_foam_streaks(wind_in_world(water), material.foam_streak)
+        .with_pixel_angle(frame.pixel_angle())
+        .with_foam_crests(water.placement.to_world(Vec3::ZERO).y, water.slopes.height_variance().sqrt());
     let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading) };
     let clip_from_world = frame.clip_from_world;
     draw.draw(fb, mesh, &|p| clip_from_world * Vec4::from((p, 1.0)), material.shading, &shader);

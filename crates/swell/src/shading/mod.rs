@@ -21,7 +21,7 @@ mod terrain_color;
 mod texture;
 mod water_optics;
 
-pub use foam_pattern::{FoamPattern, FOAM_PATTERN_SIDE};
+pub use foam_pattern::{FoamPattern, FOAM_PATTERN_LEVELS, FOAM_PATTERN_SIDE};
 pub use fresnel::fresnel_dielectric;
 pub use lighting::{lambert, Environment};
 pub use preetham::{sun_transmittance, zenith_chromaticity, zenith_luminance, Perez, PreethamSky};

@@ -5,8 +5,10 @@
 use glam::{Vec2, Vec3};
 
 use super::slope_variance::{mean_fresnel_lanes, spread_normals_lanes, widened_lobe_lanes};
-use super::{fresnel_dielectric, Environment, FoamPattern, Lobe, ReflectionMap, SurfaceVarying, Texture};
-use crate::math::{fast_pow, Isa, Lanes, Vec3Lanes};
+use super::{
+    fresnel_dielectric, Environment, FoamPattern, Lobe, ReflectionMap, SurfaceVarying, Texture, FOAM_PATTERN_SIDE,
+};
+use crate::math::{fast_exp2, fast_pow, Isa, Lanes, Vec3Lanes};
 use crate::scene::{Light, WaterMaterial};
 
 /// What lies under the water: the height and colour of the bottom below each horizontal point.
@@ -71,6 +73,14 @@ pub struct WaterLook<'a> {
     /// Foam streaks: the unit world direction (x, z) the wind blows towards and how many times
     /// longer than wide the pattern's cells are drawn along it (>= 1); `None` keeps them round.
     pub foam_streaks: Option<(Vec2, f32)>,
+    /// Angle one pixel of the image spans, radians (the supersampled image's when supersampling),
+    /// at least 0: the foam pattern is filtered to each pixel's footprint. 0 (the default, no camera)
+    /// shows it at full detail at every distance.
+    pub pixel_angle: f32,
+    /// Foam gathered on the crests: the height of the water at rest (world y, m) and `1 / σ`,
+    /// σ the spread of the surface's height (m, `sqrt(m0)`); `None` spreads the coverage the
+    /// wave model reports evenly over the surface ([`crest_weight_lanes`]).
+    pub foam_crests: Option<(f32, f32)>,
 }
 
 impl<'a> WaterLook<'a> {
@@ -80,7 +90,17 @@ impl<'a> WaterLook<'a> {
         // Reduce modulo one tile in f64 so that hours of flow keep full f32 precision.
         let tiles = |v: f32| (-(v as f64) * t / material.texture_scale as f64).rem_euclid(1.0) as f32;
         let texture_offset = Vec2::new(tiles(material.flow_velocity.x), tiles(material.flow_velocity.y));
-        Self { material, seabed, texture, texture_offset, reflection: None, foam: None, foam_streaks: None }
+        Self {
+            material,
+            seabed,
+            texture,
+            texture_offset,
+            reflection: None,
+            foam: None,
+            foam_streaks: None,
+            pixel_angle: 0.0,
+            foam_crests: None,
+        }
     }
 
     /// The same look, also reflecting the terrain of `reflection`.
@@ -91,6 +111,20 @@ impl<'a> WaterLook<'a> {
     /// The same look, its foam structured by `pattern`.
     pub fn with_foam(self, pattern: Option<&'a FoamPattern>) -> Self {
         Self { foam: pattern, ..self }
+    }
+
+    /// The same look, for an image whose pixels span `pixel_angle` radians each (>= 0; see
+    /// [`Self::pixel_angle`]).
+    pub fn with_pixel_angle(self, pixel_angle: f32) -> Self {
+        Self { pixel_angle: pixel_angle.max(0.0), ..self }
+    }
+
+    /// The same look, its foam gathered on the crests of a surface at rest at height `rest` (world
+    /// y, m) whose height spreads `spread` m about it (the standard deviation, `sqrt(m0)`); no
+    /// gathering for a spread that is not positive and finite.
+    pub fn with_foam_crests(self, rest: f32, spread: f32) -> Self {
+        let foam_crests = (spread.is_finite() && spread > 0.0 && rest.is_finite()).then(|| (rest, 1.0 / spread));
+        Self { foam_crests, ..self }
     }
 
     /// The same look, its foam's cells drawn out `ratio` (>= 1) times longer than wide along the
@@ -133,11 +167,12 @@ const SEABED_ITERATIONS: usize = 4;
 /// twice the height): a tall spike does not glow without bound.
 const MAX_CREST_FACTOR: f32 = 3.0;
 
-/// Distance, in foam-pattern tiles, beyond which the foam's cells start to give way to their mean
-/// (the coverage): farther, a cell's border is thinner than a pixel and would shimmer.
-const FOAM_DETAIL_START_TILES: f32 = 15.0;
-/// Distance, in tiles, over which that hand-over completes.
-const FOAM_DETAIL_FADE_TILES: f32 = 30.0;
+/// Foam coverage below which the pattern is not drawn, only its mean ([`foam_cover_lanes`]).
+const FOAM_SPECK_COVERAGE: f32 = 1.0 / 256.0;
+
+/// How strongly foam gathers on the crests: the weight of a point `z` standard deviations above
+/// the water at rest is `exp(a z - a² / 2)` with this `a` ([`crest_weight_lanes`]).
+const FOAM_CREST_CONTRAST: f32 = 1.5;
 
 /// Depth of water (m) over which the surface's reflection and glitter give way to the bottom at
 /// the water's edge: a film a few centimetres thick shows the wet sand under it, so the edge has
@@ -273,14 +308,17 @@ pub fn shade_water_lanes(
         let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
         water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular * edge);
     }
+    // The wave model's whitecaps gather on the crests; the shore's foam has its own place (where
+    // crests reach their breaking height, and the swash).
+    let whitecaps = on_crests_lanes(look, p, points.foam);
     let foam = if shore && m.shore_foam > 0.0 {
-        points.foam.max(shore_foam_lanes(m.shore_foam, p.y, depth, edge))
+        whitecaps.max(shore_foam_lanes(m.shore_foam, p.y, depth, edge))
     } else {
-        points.foam
+        whitecaps
     };
     if foam.gt(0.0).any() {
         let foam_light = lambert_lanes(env, p, Vec3Lanes::splat(Vec3::Y)) * m.foam_color;
-        let cover = foam_cover_lanes(env, look, p, foam.min(1.0));
+        let cover = foam_cover_lanes(env, look, p, cos_i, foam.min(1.0));
         water = foam.gt(0.0).select3(water.lerp(foam_light, cover), water);
     }
     // Aerial perspective: distant water fades into the horizon's haze (unchanged without haze).
@@ -505,21 +543,31 @@ fn light_in_water_lanes(
 
 /// How much of each lane foam covers, [0, 1], for the wave model's coverage `coverage` there:
 /// the look's [`FoamPattern`] at the point (tiles of `foam_scale`) revealed down to the coverage
-/// (its mean over a tile is the coverage), handing over to the coverage itself with distance,
-/// where the pattern's cells would be smaller than a pixel; drawn out along the wind when the
-/// look has [`WaterLook::foam_streaks`]. Without a pattern, the coverage.
+/// (its mean over a tile is the coverage), at the level of detail the pixel's footprint resolves
+/// ([`FoamPattern::filtered_alpha_lanes`]) and handing over to the coverage itself where even the
+/// coarsest level would be finer than a pixel; drawn out along the wind when the look has
+/// [`WaterLook::foam_streaks`]. `cos_i` is the cosine between the normal and the view (the
+/// footprint is stretched by the grazing angle as the slope filter's is, `render/sea_lod.rs`).
+/// Without a pattern, the coverage.
 #[inline(always)]
-fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, coverage: Lanes) -> Lanes {
+fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, cos_i: Lanes, coverage: Lanes) -> Lanes {
     let Some(pattern) = look.foam else { return coverage };
-    let m = look.material;
-    let per_tile = 1.0 / m.foam_scale;
-    let tiles_away = (Vec3Lanes::splat(env.eye) - p).length() * per_tile;
-    let fade = ((tiles_away - FOAM_DETAIL_START_TILES) * (1.0 / FOAM_DETAIL_FADE_TILES)).max(0.0).min(1.0);
-    // Most of an open sea's pixels are far enough for the coverage alone: the pattern (a Worley
-    // look-up per lane) is evaluated only for batches that show some of it.
-    if !fade.lt(1.0).any() {
+    // A batch whose coverage stays below a 256th shows at most a scatter of specks a pixel's
+    // grey level would not tell from their mean: drawn as the mean, and the pattern (most of the
+    // foam's cost) is not read where the sea barely breaks.
+    if !coverage.gt(FOAM_SPECK_COVERAGE).any() {
         return coverage;
     }
+    let m = look.material;
+    let per_tile = 1.0 / m.foam_scale;
+    // Texels per metre of the round pattern: streaks squeeze it across the wind and stretch it
+    // along by the same factor, so a footprint keeps its area in texels, and the level is chosen
+    // by that area (taking the finer axis instead blurred the foam seen from above a fifth below
+    // the solid share of a 4 x 4 supersampled frame, `tests/foam_coverage.rs`).
+    let texels_per_m = per_tile * FOAM_PATTERN_SIDE as f32;
+    let distance = (Vec3Lanes::splat(env.eye) - p).length();
+    let footprint = distance * look.pixel_angle / cos_i.max(0.05).sqrt();
+    let texels = footprint * texels_per_m;
     let (u, v) = match look.foam_streaks {
         // The pattern in axes along and across the wind, stretched along it and squeezed across
         // by the square root of the ratio each, so that a cell keeps its area and the foam its
@@ -530,9 +578,38 @@ fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, coverage:
         }
         None => (p.x * per_tile, p.z * per_tile),
     };
-    let cells = pattern.alpha_lanes(u, v, coverage, m.foam_feather);
-    // As a weighted sum, exactly the coverage where the fade is complete, as when skipped.
-    cells * (1.0 - fade) + coverage * fade
+    pattern.filtered_alpha_lanes(u, v, coverage, m.foam_feather, texels)
+}
+
+/// The wave model's foam coverage `coverage` at points `p`, gathered on the crests when the look
+/// has [`WaterLook::foam_crests`] ([`crest_weight_lanes`]), in [0, 1].
+#[inline(always)]
+fn on_crests_lanes(look: &WaterLook, p: Vec3Lanes, coverage: Lanes) -> Lanes {
+    match look.foam_crests {
+        Some((rest, inv_spread)) => (coverage * crest_weight_lanes((p.y - rest) * inv_spread)).min(1.0),
+        None => coverage,
+    }
+}
+
+/// How much more foam than the wave model's coverage a point `z` standard deviations of the
+/// sea's height above the water at rest shows: `exp(a z - a² / 2)`, a = [`FOAM_CREST_CONTRAST`]
+/// (z clamped to ±4).
+///
+/// Why: the model's coverage is a probability per sample, and where most of the breaking is
+/// below the grid (the FFT ocean's `σ` of the unresolved Jacobian, `water/foam.rs`) it is nearly
+/// the same everywhere, which drawn as it is makes an even lace over the whole sea. Waves break
+/// at the crests of the long waves and their groups (Donelan, Longuet-Higgins and Turner 1972,
+/// "Periodicity in whitecaps", Nature 239; the short waves are steepest on the long waves' crests,
+/// Longuet-Higgins and Stewart 1960): the weight moves the foam there, so whitecaps have bodies on
+/// the crests and thin out into the troughs. Its mean over a Gaussian sea is exactly 1
+/// (`E[exp(a Z)] = exp(a² / 2)`), so the foam an image shows keeps the coverage the model reports
+/// (the cap at full cover and the sea's small skewness aside).
+#[inline(always)]
+fn crest_weight_lanes(z: Lanes) -> Lanes {
+    const A: f32 = FOAM_CREST_CONTRAST;
+    let z = z.max(-4.0).min(4.0);
+    // exp(x) = 2^(x log2 e).
+    Lanes::from_fn(|i| fast_exp2((A * z.0[i] - 0.5 * A * A) * std::f32::consts::LOG2_E))
 }
 
 /// [`fresnel_dielectric`] per lane.
@@ -915,12 +992,12 @@ mod tests {
         let streaked = round.with_foam_streaks(Some(Vec2::new(0.0, 3.0)), 4.0);
         let cover = |look: &WaterLook, x: f32, z: f32| {
             let p = Vec3Lanes::splat(Vec3::new(x, 0.0, z));
-            foam_cover_lanes(&env, look, p, Lanes::splat(0.3)).0[0]
+            foam_cover_lanes(&env, look, p, Lanes::splat(1.0), Lanes::splat(0.3)).0[0]
         };
         let (mut differ, mut foamy) = (0, 0);
         for i in -40..40 {
             for j in -40..40 {
-                // Within 15 tiles of the eye, where the pattern shows undimmed.
+                // At full detail: the look has no pixel angle, so nothing is filtered.
                 let (x, z) = (i as f32 * 0.375, j as f32 * 0.375);
                 let c = cover(&streaked, x, z);
                 assert_eq!(c, cover(&round, z / 2.0, -2.0 * x), "at ({x}, {z})");
@@ -932,6 +1009,32 @@ mod tests {
         for unstreaked in [round.with_foam_streaks(None, 4.0), round.with_foam_streaks(Some(Vec2::X), 1.0)] {
             assert!(unstreaked.foam_streaks.is_none());
             assert_eq!(cover(&unstreaked, 1.3, -2.7), cover(&round, 1.3, -2.7));
+        }
+    }
+
+    /// Foam gathers on the crests: with the sea's height spread σ, a point σ above the water at
+    /// rest shows e^(2a) = 20 times the foam of a point σ below it (a = 1.5), and over a Gaussian
+    /// sea the weight averages to 1, so the coverage the model reports is kept; a spread that is
+    /// not positive gathers nothing.
+    #[test]
+    fn foam_gathers_on_the_crests_and_keeps_its_coverage() {
+        let material = WaterMaterial::default();
+        let (rest, sigma) = (2.0f32, 0.8f32);
+        let look = WaterLook::new(&material, &NoBottom, None, 0.0).with_foam_crests(rest, sigma);
+        let cover = |y: f32| on_crests_lanes(&look, Vec3Lanes::splat(Vec3::new(0.0, y, 0.0)), Lanes::splat(0.01)).0[0];
+        let ratio = cover(rest + sigma) / cover(rest - sigma);
+        assert!((ratio / (2.0 * FOAM_CREST_CONTRAST).exp() - 1.0).abs() < 0.02, "crest over trough {ratio}");
+        // The mean over a Gaussian sea, by the midpoint rule over ±6 σ.
+        let steps = 2400;
+        let mut mean = 0.0f64;
+        for i in 0..steps {
+            let z = -6.0 + 12.0 * (i as f64 + 0.5) / steps as f64;
+            let density = (-0.5 * z * z).exp() / (2.0 * std::f64::consts::PI).sqrt();
+            mean += f64::from(cover(rest + sigma * z as f32)) * density * 12.0 / steps as f64;
+        }
+        assert!((mean / 0.01 - 1.0).abs() < 0.02, "mean foam {mean} for a coverage of 0.01");
+        for flat in [0.0, -1.0, f32::NAN] {
+            assert!(WaterLook::new(&material, &NoBottom, None, 0.0).with_foam_crests(rest, flat).foam_crests.is_none());
         }
     }
 }

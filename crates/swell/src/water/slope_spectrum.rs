@@ -45,12 +45,13 @@ pub struct UnresolvedSlopes {
     inv_step: f32,
     table: [f32; TABLE],
     total: f32,
+    height_variance: f32,
 }
 
 impl Default for UnresolvedSlopes {
     /// A surface with no waves to filter (a mirror stays a mirror).
     fn default() -> Self {
-        Self { log_k0: 0.0, inv_step: 0.0, table: [0.0; TABLE], total: 0.0 }
+        Self { log_k0: 0.0, inv_step: 0.0, table: [0.0; TABLE], total: 0.0, height_variance: 0.0 }
     }
 }
 
@@ -76,7 +77,15 @@ impl UnresolvedSlopes {
             *t = valid.iter().map(|c| c.1 * unresolved_share(c.0, cut)).sum::<f64>() as f32;
         }
         let total = valid.iter().map(|c| c.1).sum::<f64>() as f32;
-        Self { log_k0: l0 as f32, inv_step: (1.0 / step) as f32, table, total }
+        // A wave of amplitude A has slope variance (A k)² / 2 and height variance A² / 2.
+        let height_variance = valid.iter().map(|c| c.1 / (c.0 * c.0)).sum::<f64>() as f32;
+        Self { log_k0: l0 as f32, inv_step: (1.0 / step) as f32, table, total, height_variance }
+    }
+
+    /// Variance of the surface's height over all its waves, m² (`m0`; the significant wave
+    /// height is `4 sqrt(m0)`), 0 without waves: the scale of its crests.
+    pub fn height_variance(&self) -> f32 {
+        self.height_variance
     }
 
     /// Slope variance of every wave (both axes summed), the far field's where no geometry is left.
