@@ -207,11 +207,3 @@ pub(crate) struct FrameContext<'a> {
     /// Pixels drawn, width x height (the supersampled size when supersampling).
     pub size: (u32, u32),
 }
-
-impl FrameContext<'_> {
-    /// Angle one pixel row spans, radians (of the drawn, supersampled image): what a pixel's
-    /// footprint at a distance is made of.
-    pub fn pixel_angle(&self) -> f32 {
-        2.0 * (0.5 * self.camera.fov_y_deg.to_radians()).tan() / self.size.1.max(1) as f32
-    }
-}

@@ -21,6 +21,7 @@ use rayon::prelude::*;
 use crate::math::{Isa, Lanes, Vec3Lanes, LANES};
 use crate::mesh::Clipmap;
 use crate::scene::Camera;
+use crate::shading::pixel_footprint_lanes;
 use crate::water::UnresolvedSlopes;
 
 /// The renderer's per-image state of the unbounded sea: the rings' normals with the unresolved
@@ -117,11 +118,10 @@ impl<'a> FootprintFilter<'a> {
         clipmap: &Clipmap,
         world_scale: f32,
     ) -> Self {
-        let pixel_angle = 2.0 * (0.5 * camera.fov_y_deg.to_radians()).tan() / height.max(1) as f32;
         Self {
             slopes,
             eye: camera.eye,
-            pixel_angle,
+            pixel_angle: camera.pixel_angle(height),
             center: Vec2::new(camera.eye.x, camera.eye.z),
             spacing: clipmap.level_spacing(0) * world_scale,
             ring_cells: clipmap.grids()[0].cells_x as f32,
@@ -142,8 +142,8 @@ impl<'a> FootprintFilter<'a> {
     fn variance_lanes(&self, p: Vec3Lanes, n: Vec3Lanes) -> Lanes {
         let to_eye = Vec3Lanes::splat(self.eye) - p;
         let distance = to_eye.length();
-        let cos = (n.dot(to_eye) / distance.max(1e-6)).abs().max(0.05);
-        let footprint = distance * self.pixel_angle / cos.sqrt();
+        let cos = (n.dot(to_eye) / distance.max(1e-6)).abs();
+        let footprint = pixel_footprint_lanes(distance, self.pixel_angle, cos);
         // Ring k covers Chebyshev radii [N/4, N/2] s_k about the centre: s_k <= 4 r / N.
         let r = (p.x - self.center.x).abs().max((p.z - self.center.y).abs());
         let mesh = (4.0 * r / self.ring_cells).max(self.spacing);

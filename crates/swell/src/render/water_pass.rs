@@ -66,7 +66,7 @@ pub fn draw(
         .with_reflection(reflection)
         .with_foam(Some(&water.foam_pattern))
         .with_foam_streaks(wind_in_world(water), material.foam_streak)
-        .with_pixel_angle(frame.pixel_angle())
+        .with_pixel_angle(frame.camera.pixel_angle(frame.size.1))
         .with_foam_crests(water.placement.to_world(Vec3::ZERO).y, water.slopes.height_variance().sqrt());
     let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading) };
     let clip_from_world = frame.clip_from_world;

@@ -101,6 +101,13 @@ impl Camera {
     pub fn clip_from_world(&self, aspect: f32) -> Mat4 {
         self.clip_from_view(aspect) * self.view_from_world()
     }
+
+    /// Angle (radians) one pixel row spans in an image of `rows` pixel rows (the supersampled
+    /// count when supersampling; at least 1 is taken): what a pixel's footprint at a distance is
+    /// made of.
+    pub fn pixel_angle(&self, rows: u32) -> f32 {
+        2.0 * (0.5 * self.fov_y_deg.to_radians()).tan() / rows.max(1) as f32
+    }
 }
 
 /// `gluPerspective`: view to clip for a vertical field of view `fov_y` (radians, in (0, π)),

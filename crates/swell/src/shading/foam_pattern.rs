@@ -296,7 +296,7 @@ impl FoamPattern {
     /// detail. Its mean over a tile is the coverage.
     #[inline(always)]
     pub fn alpha_lanes(&self, u: Lanes, v: Lanes, coverage: Lanes, feather: f32) -> Lanes {
-        self.alpha_at(u, v, coverage, Lanes::splat(feather), 0)
+        Self::ramped(self.values_lanes(u, v, 0), coverage, Lanes::splat(feather))
     }
 
     /// [`Self::alpha_lanes`] for a pixel whose footprint spans `texels` texels of the tile per
@@ -336,18 +336,12 @@ impl FoamPattern {
             let (r0, r1) = (ramp(level), ramp(level + 1));
             (self.with_patches(l0 + (l1 - l0) * frac, u, v, level + 1), r0 + (r1 - r0) * frac)
         } else {
-            (self.values_lanes(u, v, last), ramp(last))
+            (self.with_patches(read_level(&self.levels, &at, last), u, v, last), ramp(last))
         };
         let a = Self::ramped(value, coverage, feather);
         // Past the last level, over one more octave, the plain coverage takes over.
         let beyond = (lod - last as f32).max(0.0).min(1.0);
         a + (coverage - a) * beyond
-    }
-
-    /// The pattern at `level` ramped over `feather` above the threshold of `coverage`, per lane.
-    #[inline(always)]
-    fn alpha_at(&self, u: Lanes, v: Lanes, coverage: Lanes, feather: Lanes, level: usize) -> Lanes {
-        Self::ramped(self.values_lanes(u, v, level), coverage, feather)
     }
 
     /// How much of each lane is foam for pattern values `value`: above the threshold of
@@ -363,7 +357,7 @@ impl FoamPattern {
 /// central differences on the torus.
 fn level_steepness(mips: &[f32; MIP_TEXELS], level: usize) -> f32 {
     let n = FOAM_PATTERN_SIDE >> LEVEL_SHIFT[level];
-    let values = &mips[LEVEL_OFFSET[level]..LEVEL_OFFSET[level + 1]];
+    let values = level_values(mips, level);
     let at = |i: usize, j: usize| f64::from(values[(j % n) * n + (i % n)]);
     let mut sum = 0.0f64;
     for j in 0..n {
@@ -439,6 +433,11 @@ fn worley_borders(cells: usize, seed: u32) -> Vec<f32> {
     out
 }
 
+/// The values of level `level` of `mips`, row-major.
+fn level_values(mips: &[f32], level: usize) -> &[f32] {
+    &mips[LEVEL_OFFSET[level]..LEVEL_OFFSET[level + 1]]
+}
+
 /// The [`FOAM_PATTERN_LEVELS`] levels of `raw` (a full-size tile, row-major): level 0 `raw`
 /// equalised, level `k` that blurred over `2^k` texels, sampled at the centre of each of its
 /// (coarser) texels and equalised again.
@@ -446,16 +445,16 @@ fn mip_levels(raw: Vec<f32>) -> Mips {
     let n = FOAM_PATTERN_SIDE;
     let finest = equalised(raw);
     let mut mips = vec![0.5f32; MIP_TEXELS];
-    for k in 0..FOAM_PATTERN_LEVELS {
-        let blurred = if k == 0 { finest.clone() } else { box_blurred(&finest, 1 << k) };
+    mips[..LEVEL_OFFSET[1]].copy_from_slice(&finest);
+    for k in 1..FOAM_PATTERN_LEVELS {
+        let blurred = box_blurred(&finest, 1 << k);
         // A blurred value at texel j is the mean over a window centred on j's lower edge: the
         // centre of a coarse texel of `stride` full-size ones is the edge at half its width.
         let stride = 1usize << LEVEL_SHIFT[k];
         let (side, centre) = (n / stride, stride / 2);
         let sampled =
             (0..side * side).map(|i| blurred[((i / side) * stride + centre) * n + (i % side) * stride + centre]);
-        let level = if k == 0 { finest.clone() } else { equalised(sampled.collect()) };
-        mips[LEVEL_OFFSET[k]..LEVEL_OFFSET[k + 1]].copy_from_slice(&level);
+        mips[LEVEL_OFFSET[k]..LEVEL_OFFSET[k + 1]].copy_from_slice(&equalised(sampled.collect()));
     }
     mips.into_boxed_slice().try_into().unwrap_or_else(|_| unreachable!("MIP_TEXELS values were built"))
 }
@@ -513,17 +512,12 @@ impl WaterMaterial {
 mod tests {
     use super::*;
 
-    /// Values of `level` of `mips`.
-    fn level(mips: &[f32; MIP_TEXELS], level: usize) -> &[f32] {
-        &mips[LEVEL_OFFSET[level]..LEVEL_OFFSET[level + 1]]
-    }
-
     #[test]
     fn every_level_is_uniform_and_tiles() {
         let p = FoamPattern::procedural();
         let patches = p.patches.as_ref().expect("the procedural pattern has patches");
         for k in 0..FOAM_PATTERN_LEVELS {
-            for values in [level(&p.levels, k), level(patches, k)] {
+            for values in [level_values(&p.levels[..], k), level_values(&patches[..], k)] {
                 // Uniform: the values are the ranks, so every decile holds a tenth of them.
                 let mut deciles = [0usize; 10];
                 for &v in values {

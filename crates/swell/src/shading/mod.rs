@@ -28,7 +28,7 @@ pub use preetham::{sun_transmittance, zenith_chromaticity, zenith_luminance, Per
 pub use reflection_map::ReflectionMap;
 pub use sky_light::{SunDisc, SunProfile};
 pub use sky_radiance::{SkyRadiance, TABLE_SIDE};
-pub use slope_variance::{mean_fresnel, widened_lobe, UnresolvedSlopes};
+pub use slope_variance::{mean_fresnel, pixel_footprint_lanes, widened_lobe, UnresolvedSlopes};
 pub use specular::{shade_opaque, specular, Lobe, OpaqueLook};
 pub use surface_varying::SurfaceVarying;
 pub use terrain_color::shade_terrain;

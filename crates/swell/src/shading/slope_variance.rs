@@ -18,6 +18,16 @@ use glam::Vec3;
 use crate::math::{fast_exp2, fast_pow, Lanes, Vec3Lanes};
 pub use crate::water::UnresolvedSlopes;
 
+/// Width (m) of the patch of surface one pixel sees, per lane: `distance` (m) times the pixel's
+/// angle `pixel_angle` (radians), stretched by the grazing angle as `1 / sqrt(cos)`, `cos` the
+/// cosine between the surface normal and the view (taken at least 0.05, so a grazing view
+/// stretches it at most 4.5 times). The one footprint the slope filter (`render/sea_lod.rs`) and
+/// the foam's levels of detail (`water_optics.rs`) both use.
+#[inline(always)]
+pub fn pixel_footprint_lanes(distance: Lanes, pixel_angle: f32, cos: Lanes) -> Lanes {
+    distance * pixel_angle / cos.max(0.05).sqrt()
+}
+
 /// Mean Fresnel reflectance over slopes of total variance `variance` (both axes; isotropic, so
 /// `sigma_v^2 = variance / 2`), for a view at `cos_v` to the mean normal and normal-incidence
 /// reflectance `r0`: Bruneton et al.'s fit `(1 - cos_v)^(5 e^(-2.69 sigma_v)) / (1 + 22.7

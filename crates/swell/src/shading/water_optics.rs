@@ -4,7 +4,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::slope_variance::{mean_fresnel_lanes, spread_normals_lanes, widened_lobe_lanes};
+use super::slope_variance::{mean_fresnel_lanes, pixel_footprint_lanes, spread_normals_lanes, widened_lobe_lanes};
 use super::{
     fresnel_dielectric, Environment, FoamPattern, Lobe, ReflectionMap, SurfaceVarying, Texture, FOAM_PATTERN_SIDE,
 };
@@ -547,7 +547,7 @@ fn light_in_water_lanes(
 /// ([`FoamPattern::filtered_alpha_lanes`]) and handing over to the coverage itself where even the
 /// coarsest level would be finer than a pixel; drawn out along the wind when the look has
 /// [`WaterLook::foam_streaks`]. `cos_i` is the cosine between the normal and the view (the
-/// footprint is stretched by the grazing angle as the slope filter's is, `render/sea_lod.rs`).
+/// footprint is the slope filter's, [`pixel_footprint_lanes`]).
 /// Without a pattern, the coverage.
 #[inline(always)]
 fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, cos_i: Lanes, coverage: Lanes) -> Lanes {
@@ -566,8 +566,7 @@ fn foam_cover_lanes(env: &Environment, look: &WaterLook, p: Vec3Lanes, cos_i: La
     // the solid share of a 4 x 4 supersampled frame, `tests/foam_coverage.rs`).
     let texels_per_m = per_tile * FOAM_PATTERN_SIDE as f32;
     let distance = (Vec3Lanes::splat(env.eye) - p).length();
-    let footprint = distance * look.pixel_angle / cos_i.max(0.05).sqrt();
-    let texels = footprint * texels_per_m;
+    let texels = pixel_footprint_lanes(distance, look.pixel_angle, cos_i) * texels_per_m;
     let (u, v) = match look.foam_streaks {
         // The pattern in axes along and across the wind, stretched along it and squeezed across
         // by the square root of the ratio each, so that a cell keeps its area and the foam its
