@@ -4,7 +4,7 @@
 
 use swell::closed_set::ClosedSet;
 use swell::export::{ExrCompression, NormalSpace};
-use swell::scene::{Scene, Shading, SkyModel, WaterModelSpec, TERRAIN_GENERATORS, WATER_MODELS};
+use swell::scene::{GlitterModel, Scene, Shading, SkyModel, WaterModelSpec, TERRAIN_GENERATORS, WATER_MODELS};
 use swell::spectrum::{SpectrumKind, SpreadingFunction};
 
 fn scene_format_doc() -> String {
@@ -39,6 +39,7 @@ fn every_closed_set_round_trips_through_its_names() {
     round_trips::<ExrCompression>();
     round_trips::<NormalSpace>();
     round_trips::<SkyModel>();
+    round_trips::<GlitterModel>();
 }
 
 #[test]
@@ -49,6 +50,7 @@ fn the_scene_format_documents_every_member() {
         .chain(SpectrumKind::NAMES)
         .chain(SpreadingFunction::NAMES)
         .chain(SkyModel::NAMES)
+        .chain(GlitterModel::NAMES)
         .chain(WATER_MODELS)
         .chain(TERRAIN_GENERATORS);
     for name in names {

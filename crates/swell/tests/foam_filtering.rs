@@ -67,13 +67,19 @@ fn band(a: &[f64], b: &[f64], rows: std::ops::Range<u32>) -> (f64, f64, f64) {
 #[test]
 fn distant_foam_matches_a_4x4_supersampled_frame() {
     let images = foam_images();
-    // The horizon is at row 97 of 360: far (97 to 140, beyond about 150 m), middle and near.
-    let bands = [(97u32, 140u32, 5.0f64), (140, 200, 8.0), (200, HEIGHT, 8.0)];
+    // The horizon is at row 97 of 360: far (97 to 140, beyond about 150 m), middle and near. The
+    // far band's limit is relative to the foam it shows: how much foam stands out there depends on
+    // the sea beneath, which the glitter's micro-roughness made darker (issue 32: Bruneton's mean
+    // Fresnel over Cox and Munk's slopes; the far band's water went from 157 to 127 levels and its
+    // foam's mean from 1.85 to 3.82 levels with the same filtering). 1.6 x the foam's mean: 1.69
+    // before that change (3.12 / 1.85), 1.46 with it (5.59 / 3.82).
+    let bands = [(97u32, 140u32, None), (140, 200, Some(8.0f64)), (200, HEIGHT, Some(8.0))];
     let mut failures = Vec::new();
     for (top, bottom, limit) in bands {
         let (rms, one, ss) = band(&images.one, &images.ss, top..bottom);
+        let limit = limit.unwrap_or(1.6 * ss);
         eprintln!(
-            "rows {top}..{bottom}: foam RMS {rms:.2} levels (limit {limit}), mean {one:.2} vs {ss:.2} supersampled"
+            "rows {top}..{bottom}: foam RMS {rms:.2} levels (limit {limit:.2}), mean {one:.2} vs {ss:.2} supersampled"
         );
         // There is foam to see in every band, and its mean brightness survives filtering.
         assert!(ss > 1.0, "rows {top}..{bottom}: the supersampled frame shows foam ({ss:.2} levels)");

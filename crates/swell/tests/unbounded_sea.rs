@@ -8,7 +8,7 @@
 
 use glam::{Vec3, Vec4};
 use swell::render::Renderer;
-use swell::scene::{preset, Scene, WaterExtent};
+use swell::scene::{preset, Scene, WaterExtent, WaterModelSpec};
 use swell::world::World;
 
 const WIDTH: u32 = 160;
@@ -128,13 +128,19 @@ fn rms_rows(a: &[u8], b: &[u8], rows: std::ops::Range<usize>) -> f64 {
 /// The far band (the 12 % of the image height just below the horizon) rendered with one sample
 /// per pixel against the same frame supersampled 4 x 4: the statistical shading of unresolved
 /// waves must keep it within 6 grey levels RMS over R, G and B (the finite patch was about 10 at
-/// 640 x 360, issue 17; the test prints the patch's figure for the same band).
+/// 640 x 360, issue 17; the test prints the patch's figure for the same band). The water alone:
+/// foam has its own filtering and its own test (`foam_filtering.rs`); with the glitter's
+/// micro-roughness (issue 32) the far sea is darker, so its foam would stand out more here and
+/// measure the foam, not the slopes (ocean with foam: 6.6, without: 1.9; 4.8 and 3.7 before).
 #[test]
 fn the_far_band_matches_a_4x4_supersampled_reference() {
     const LIMIT: f64 = 6.0;
     let mut results = Vec::new();
     for name in ["ocean", "sea"] {
-        let scene = preset(name).unwrap();
+        let mut scene = preset(name).unwrap();
+        if let WaterModelSpec::Fft(ocean) = &mut scene.water.as_mut().unwrap().model {
+            ocean.foam = false;
+        }
         let mut reference = scene.clone();
         reference.render.supersample = 4;
         let (one, ss) = (render(&scene, 2.0), render(&reference, 2.0));

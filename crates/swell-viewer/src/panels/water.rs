@@ -90,6 +90,9 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
 /// Bottom depth (m) the panel starts from when the flat bottom is switched on.
 pub const DEFAULT_BOTTOM_DEPTH_M: f32 = 5.0;
 
+/// Wind speed (m/s) the panel starts from when the glitter's own wind is switched on.
+pub const DEFAULT_GLITTER_WIND_MS: f32 = 7.0;
+
 /// Shows every `[water.material]` key; returns whether `m` changed.
 pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
     let mut changed = false;
@@ -97,8 +100,17 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
         changed |= fields::color(ui, "colour", &mut m.color);
         changed |= fields::member(ui, "shading", &mut m.shading);
         changed |= fields::number(ui, "refractive index", &mut m.refractive_index, 0.001, "");
+        changed |= fields::member(ui, "glitter", &mut m.glitter);
         changed |= fields::number(ui, "specular", &mut m.specular, 0.01, "");
-        changed |= fields::number(ui, "shininess", &mut m.shininess, 1.0, "");
+        changed |= fields::number(ui, "shininess (lobe)", &mut m.shininess, 1.0, "");
+        changed |= fields::optional_number(
+            ui,
+            "wind speed (off: the model's)",
+            &mut m.wind_speed,
+            DEFAULT_GLITTER_WIND_MS,
+            0.05,
+            " m/s",
+        );
         changed |= fields::rgb_numbers(ui, "absorption", &mut m.absorption, 0.001, " /m");
         changed |= fields::optional_number(
             ui,
@@ -129,8 +141,10 @@ pub fn show_material(ui: &mut Ui, m: &mut WaterMaterial) -> bool {
             "color",
             "shading",
             "refractive_index",
+            "glitter",
             "specular",
             "shininess",
+            "wind_speed",
             "absorption",
             "bottom_depth",
             "bottom_color",

@@ -45,7 +45,8 @@ pub fn draw(
     let eye = env.eye;
     let material = &water.material;
     // Far out no bottom shows; the texture would alias, so the body colour stands for it.
-    let look = WaterLook::new(material, &NoBottom, None, env.time);
+    let look = WaterLook::new(material, &NoBottom, None, env.time)
+        .with_glitter(super::water_pass::sun_glitter(water, env.sun.as_ref()));
     let variance = slopes.total();
     let below = eye.y < 0.0;
     let from_below = if below { material.color * lambert(env, eye, -Vec3::Y) } else { Vec3::ZERO };

@@ -7,10 +7,12 @@ use glam::{Vec3, Vec4};
 use super::shaded_draw::{ShadedDraw, ShadedMesh, SurfaceShader};
 use super::FrameContext;
 use crate::raster::Framebuffer;
+use crate::scene::GlitterModel;
 use crate::shading::{
-    shade_water_filtered, shade_water_run, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed,
-    SurfaceVarying, WaterLook,
+    shade_water_filtered, shade_water_run, Environment, FlatBottom, Lobe, NoBottom, ReflectionMap, Seabed, SunDisc,
+    SunGlitter, SurfaceVarying, WaterLook,
 };
+use crate::water::developed_sea_wind;
 use crate::world::{TerrainBody, WaterBody};
 
 /// Water as [`crate::shading::shade_water`] sees it, with the specular lobe of its shading
@@ -67,7 +69,8 @@ pub fn draw(
         .with_foam(Some(&water.foam_pattern))
         .with_foam_streaks(wind_in_world(water), material.foam_streak)
         .with_pixel_angle(frame.camera.pixel_angle(frame.size.1))
-        .with_foam_crests(water.placement.to_world(Vec3::ZERO).y, water.slopes.height_variance().sqrt());
+        .with_foam_crests(water.placement.to_world(Vec3::ZERO).y, water.slopes.height_variance().sqrt())
+        .with_glitter(sun_glitter(water, frame.env.sun.as_ref()));
     let shader = WaterShader { env: &frame.env, look, lobe: Lobe::of(material.shading) };
     let clip_from_world = frame.clip_from_world;
     draw.draw(fb, mesh, &|p| clip_from_world * Vec4::from((p, 1.0)), material.shading, &shader);
@@ -79,4 +82,23 @@ fn wind_in_world(water: &WaterBody) -> Option<glam::Vec2> {
     let d = water.model.wind_direction()?;
     let w = water.placement.to_world(Vec3::new(d.x, 0.0, d.y)) - water.placement.to_world(Vec3::ZERO);
     Some(glam::Vec2::new(w.x, w.z))
+}
+
+/// The slope distribution `water` reflects the lights through ([`GlitterModel::CoxMunk`]), or
+/// `None` for the material's lobe. The wind is the material's `wind_speed`, else the model's own,
+/// else that of a fully developed sea peaking at the model's longest wave; with none of these
+/// (no waves to judge by) the surface has no micro-roughness. `sun` is the disc drawn in the sky.
+pub(super) fn sun_glitter(water: &WaterBody, sun: Option<&SunDisc>) -> Option<SunGlitter> {
+    if water.material.glitter != GlitterModel::CoxMunk {
+        return None;
+    }
+    let wind = water
+        .material
+        .wind_speed
+        .or_else(|| water.model.wind_speed())
+        .or_else(|| water.slopes.longest_wavenumber().map(developed_sea_wind));
+    Some(match wind {
+        Some(u10) => SunGlitter::cox_munk(u10, water.slopes.total(), wind_in_world(water), sun),
+        None => SunGlitter::smooth(sun),
+    })
 }

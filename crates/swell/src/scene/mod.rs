@@ -4,6 +4,7 @@
 //! runnable world from it.
 
 mod camera;
+mod glitter_model;
 mod light;
 mod memory_estimate;
 mod presets;
@@ -21,6 +22,7 @@ mod water_placement;
 mod water_spec;
 
 pub use camera::Camera;
+pub use glitter_model::GlitterModel;
 pub use light::{Incident, Light};
 pub use presets::{preset, Preset, PRESETS};
 pub use render_settings::{RenderSettings, MAX_IMAGE_SIDE, MAX_SUPERSAMPLE, MAX_THREADS};

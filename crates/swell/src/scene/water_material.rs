@@ -3,7 +3,7 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::{Shading, WaterPlacement};
+use super::{GlitterModel, Shading, WaterPlacement};
 use crate::error::{check_finite_vec, check_positive, check_range, Error, Result};
 use crate::water::SurfaceFlow;
 
@@ -24,11 +24,22 @@ pub struct WaterMaterial {
     pub shading: Shading,
     /// Refractive index of water relative to air, in [1, 3]. Default 1.333 (fresh water, 20 °C).
     pub refractive_index: f32,
-    /// Strength of the lights' specular highlight (the sun glitter), in [0, 100]. Default 1.
+    /// How the water reflects the lights (the sun glitter). Default `cox-munk`: through the
+    /// surface's slope distribution, in the lights' own units.
+    pub glitter: GlitterModel,
+    /// Strength of the lights' reflection (the sun glitter), in [0, 100]: 1 is physical with
+    /// `cox-munk`; 0 turns it off. Default 1.
     pub specular: f32,
-    /// Specular exponent of the Phong / Blinn-Phong lobe, in [1, 100000]. Default 400 (a calm,
-    /// mirror-like surface gives a small bright glitter).
+    /// Specular exponent of the Phong / Blinn-Phong lobe (`glitter = "lobe"` only), in
+    /// [1, 100000]. Default 400 (a calm, mirror-like surface gives a small bright glitter).
     pub shininess: f32,
+    /// Wind speed 10 m above the water, m/s, in [0.5, 60], that sets the micro-roughness of
+    /// `cox-munk` glitter: the slopes below the model's waves that bring its total slope variance
+    /// to Cox and Munk's for this wind. Absent: the model's own wind (the FFT ocean's
+    /// `wind_speed`), or for models without one the wind of a fully developed sea whose peak is
+    /// the model's longest wave (Pierson and Moskowitz 1964); models with no waves to judge by
+    /// (pool, springs, river, noise) then get no micro-roughness.
+    pub wind_speed: Option<f32>,
     /// Beer-Lambert absorption coefficient per linear RGB channel, 1/m, each in
     /// [0, [`MAX_ABSORPTION`]]. Default [0.45, 0.064, 0.0145]: pure water at about 650, 550 and
     /// 450 nm (Pope and Fry 1997), so red fades within metres and blue carries far.
@@ -93,8 +104,10 @@ impl Default for WaterMaterial {
             color: Vec3::new(0.02, 0.11, 0.16),
             shading: Shading::Gouraud,
             refractive_index: 1.333,
+            glitter: GlitterModel::CoxMunk,
             specular: 1.0,
             shininess: 400.0,
+            wind_speed: None,
             absorption: Vec3::new(0.45, 0.064, 0.0145),
             bottom_depth: None,
             bottom_color: Vec3::new(0.55, 0.47, 0.33),
@@ -136,6 +149,9 @@ impl WaterMaterial {
         check_range(&format!("{key}.refractive_index"), self.refractive_index, 1.0, 3.0)?;
         check_range(&format!("{key}.specular"), self.specular, 0.0, 100.0)?;
         check_range(&format!("{key}.shininess"), self.shininess, 1.0, 100_000.0)?;
+        if let Some(u) = self.wind_speed {
+            check_range(&format!("{key}.wind_speed"), u, 0.5, 60.0)?;
+        }
         for (i, a) in self.absorption.to_array().into_iter().enumerate() {
             check_range(&format!("{key}.absorption[{i}]"), a, 0.0, MAX_ABSORPTION)?;
         }

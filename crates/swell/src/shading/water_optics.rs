@@ -5,6 +5,7 @@
 use glam::{Vec2, Vec3};
 
 use super::slope_variance::{mean_fresnel_lanes, pixel_footprint_lanes, spread_normals_lanes, widened_lobe_lanes};
+use super::sun_glitter::SunGlitter;
 use super::{
     fresnel_dielectric, Environment, FoamPattern, Lobe, ReflectionMap, SurfaceVarying, Texture, FOAM_PATTERN_SIDE,
 };
@@ -81,6 +82,11 @@ pub struct WaterLook<'a> {
     /// σ the spread of the surface's height (m, `sqrt(m0)`); `None` spreads the coverage the
     /// wave model reports evenly over the surface ([`crest_weight_lanes`]).
     pub foam_crests: Option<(f32, f32)>,
+    /// The lights' reflection through the surface's slope distribution
+    /// ([`GlitterModel::CoxMunk`](crate::scene::GlitterModel::CoxMunk)): its micro-roughness also
+    /// blurs the reflected sky and averages the Fresnel factor. `None` draws the material's
+    /// Phong or Blinn-Phong lobe and mirrors the sun disc in the sky instead.
+    pub glitter: Option<SunGlitter>,
 }
 
 impl<'a> WaterLook<'a> {
@@ -100,7 +106,14 @@ impl<'a> WaterLook<'a> {
             foam_streaks: None,
             pixel_angle: 0.0,
             foam_crests: None,
+            glitter: None,
         }
+    }
+
+    /// The same look, reflecting the lights through `glitter`'s slope distribution (see
+    /// [`Self::glitter`]).
+    pub fn with_glitter(self, glitter: Option<SunGlitter>) -> Self {
+        Self { glitter, ..self }
     }
 
     /// The same look, also reflecting the terrain of `reflection`.
@@ -300,13 +313,26 @@ pub fn shade_water_lanes(
     // At the water's edge the surface fades into the bottom it covers (1 away from the shore).
     let shore = depth.lt(f32::INFINITY).any();
     let edge = if shore { edge_lanes(depth) } else { Lanes::splat(1.0) };
-    let f = fresnel_over_slopes_lanes(m, cos_i, unresolved) * edge;
-    let sky = reflected_lanes(env, look, p, n, to_eye, cos_i, unresolved, live);
+    // The micro-roughness below the unresolved waves blurs the sky's reflection and averages
+    // its Fresnel factor as they do; the sun then reaches the eye through the glitter, not as a
+    // disc in the mirrored sky (unless no directional light stands for it).
+    let (rough, disc_in_sky) = match &look.glitter {
+        Some(g) => (unresolved + g.micro_total(), !env.lights.iter().any(|l| matches!(l, Light::Directional { .. }))),
+        None => (unresolved, true),
+    };
+    let f = fresnel_over_slopes_lanes(m, cos_i, rough) * edge;
+    let sky = reflected_lanes(env, look, p, n, to_eye, cos_i, rough, disc_in_sky, live);
 
     let mut water = sky.scale(f) + transmitted.scale(1.0 - f);
     if m.specular > 0.0 {
-        let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
-        water = water + specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight * m.specular * edge);
+        let glitter = match &look.glitter {
+            Some(g) => g.radiance_lanes(env, p, n, to_eye, unresolved, m.refractive_index),
+            None => {
+                let (shininess, weight) = widened_lobe_lanes(m.shininess, unresolved);
+                specular_lanes(env, p, n, to_eye, lobe, shininess).scale(weight)
+            }
+        };
+        water = water + glitter.scale(edge * m.specular);
     }
     // The wave model's whitecaps gather on the crests; the shore's foam has its own place (where
     // crests reach their breaking height, and the swash).
@@ -344,9 +370,9 @@ fn fresnel_over_slopes_lanes(m: &WaterMaterial, cos_i: Lanes, unresolved: Lanes)
     }
 }
 
-/// What the water reflects towards the eye: the sky (and sun) averaged over two normals tilted
-/// by the slopes' deviation towards and away from the eye (one normal, twice, when nothing is
-/// unresolved), replaced by the mirrored terrain where the reflected ray meets it.
+/// What the water reflects towards the eye: the sky (and the sun disc, with `disc`) averaged over
+/// two normals tilted by the slopes' deviation towards and away from the eye (one normal, twice,
+/// when nothing is unresolved), replaced by the mirrored terrain where the reflected ray meets it.
 #[allow(clippy::too_many_arguments)] // the lanes of one batch, passed apart so each stays a register set
 #[inline(always)]
 fn reflected_lanes(
@@ -357,6 +383,7 @@ fn reflected_lanes(
     to_eye: Vec3Lanes,
     cos_i: Lanes,
     unresolved: Lanes,
+    disc: bool,
     live: usize,
 ) -> Vec3Lanes {
     let mut sky = Vec3Lanes::splat(Vec3::ZERO);
@@ -365,7 +392,9 @@ fn reflected_lanes(
         let mut r = s.scale(2.0 * c) - to_eye;
         // A reflected ray below the horizon would meet the water again: bent back to it.
         r.y = r.y.max(0.0);
-        sky = sky + env.sky_radiance_lanes(r.normalize_or(Vec3::Y)).scale(0.5);
+        let r = r.normalize_or(Vec3::Y);
+        let seen = if disc { env.sky_radiance_lanes(r) } else { env.sky.radiance_lanes(r) };
+        sky = sky + seen.scale(0.5);
     }
     if let Some(map) = look.reflection {
         // The terrain above the water, where the mirrored view ray meets it, replaces the sky.
@@ -613,7 +642,7 @@ fn crest_weight_lanes(z: Lanes) -> Lanes {
 
 /// [`fresnel_dielectric`] per lane.
 #[inline(always)]
-fn fresnel_dielectric_lanes(cos_incident: Lanes, ior: f32) -> Lanes {
+pub(super) fn fresnel_dielectric_lanes(cos_incident: Lanes, ior: f32) -> Lanes {
     let cos_i = cos_incident.max(0.0).min(1.0);
     let sin_t2 = (1.0 - cos_i * cos_i) / (ior * ior);
     let cos_t = (1.0 - sin_t2).max(0.0).sqrt();
@@ -670,7 +699,7 @@ fn specular_lanes(
 
 /// A light's direction and radiance at each lane's point ([`Light::incident`]).
 #[inline(always)]
-fn incident_lanes(light: &Light, p: Vec3Lanes) -> (Vec3Lanes, Vec3Lanes) {
+pub(super) fn incident_lanes(light: &Light, p: Vec3Lanes) -> (Vec3Lanes, Vec3Lanes) {
     match *light {
         Light::Directional { .. } => {
             let inc = light.incident(Vec3::ZERO);

@@ -591,6 +591,10 @@ impl WaveModel for FftOcean {
         Some(Vec2::new(a.cos(), a.sin()))
     }
 
+    fn wind_speed(&self) -> Option<f32> {
+        Some(self.params.wind_speed)
+    }
+
     fn foam(&self, grid: &GridSpec, out: &mut [f32]) -> bool {
         if !self.params.foam {
             return false;

@@ -38,7 +38,9 @@ pub use model_params::{ModelParams, SurfaceFlow};
 pub use noise_waves::{NoiseFrame, NoiseParams, NoiseWaves, MAX_NOISE_OCTAVES};
 pub use radial_wave::{RadialWave, RadialWaveParams};
 pub use river::{River, RiverParams};
-pub use slope_spectrum::{cox_munk_slope_variance, push_wave_slopes, UnresolvedSlopes};
+pub use slope_spectrum::{
+    cox_munk_axis_variances, cox_munk_slope_variance, developed_sea_wind, push_wave_slopes, UnresolvedSlopes,
+};
 pub use spring_mesh::{DropSchedule, Edges, SpringMesh, SpringMeshParams, MAX_SPRING_CELLS, MAX_STEPS_PER_ADVANCE};
 pub use steep_sines::{SteepSineWave, SteepSines, SteepSinesParams, MAX_STEEP_SINE_EXPONENT, MAX_STEEP_SINE_WAVES};
 pub use sum_of_sines::{SineWave, SinesSpec, SumOfSines, MAX_SINE_WAVES};

@@ -29,6 +29,24 @@ pub fn cox_munk_slope_variance(u10: f32) -> f32 {
     0.003 + 5.12e-3 * u10.max(0.0)
 }
 
+/// Cox and Munk's (1954) clean-sea slope variances (upwind, crosswind; dimensionless) at wind
+/// speed `u10` (m/s, 10 m up): `3.16e-3 U` and `0.003 + 1.92e-3 U` with U the wind at 12.5 m,
+/// their anemometer's height, taken from U10 by the 1/7 power law (`U12.5 = 1.032 U10`). Every
+/// wave down to the capillaries: the distribution the sun's glitter shows
+/// ([`crate::scene::GlitterModel::CoxMunk`]). Negative or NaN speeds read as calm.
+pub fn cox_munk_axis_variances(u10: f32) -> glam::Vec2 {
+    let u = u10.max(0.0) * 1.25f32.powf(1.0 / 7.0);
+    glam::Vec2::new(3.16e-3 * u, 0.003 + 1.92e-3 * u)
+}
+
+/// The wind speed U10 (m/s) of a fully developed sea whose spectral peak has wavenumber
+/// `k_peak` (rad/m): Pierson and Moskowitz (1964) put the peak at `ω = 0.877 g / U`, so in deep
+/// water `k = 0.769 g / U²`. What a sea of discrete waves with no wind of its own is taken to be
+/// blown by, its longest wave standing for the peak.
+pub fn developed_sea_wind(k_peak: f32) -> f32 {
+    (0.877f32 * 0.877 * crate::GRAVITY / k_peak).sqrt()
+}
+
 /// Entries of the cut-off table (log-spaced wavenumbers).
 const TABLE: usize = 64;
 
@@ -86,6 +104,12 @@ impl UnresolvedSlopes {
     /// height is `4 sqrt(m0)`), 0 without waves: the scale of its crests.
     pub fn height_variance(&self) -> f32 {
         self.height_variance
+    }
+
+    /// The longest wave's wavenumber, rad/m; `None` without waves.
+    pub fn longest_wavenumber(&self) -> Option<f32> {
+        // The table starts at half the smallest wavenumber (`from_components`).
+        (self.total > 0.0).then(|| 2.0 * self.log_k0.exp())
     }
 
     /// Slope variance of every wave (both axes summed), the far field's where no geometry is left.

@@ -67,6 +67,13 @@ pub trait WaveModel: Send + Sync {
         None
     }
 
+    /// Speed of that wind 10 m above the water, m/s, for models driven by one (the FFT ocean's
+    /// `wind_speed`): it sets the micro-roughness of the sun glitter
+    /// ([`crate::scene::GlitterModel::CoxMunk`]). `None` (the default) for the rest.
+    fn wind_speed(&self) -> Option<f32> {
+        None
+    }
+
     /// Appends the model's slope spectrum to `out` as `(wavenumber rad/m, slope variance)` pairs,
     /// slope variance summed over both horizontal axes (`(A k)^2 / 2` for a wave of amplitude A):
     /// what the renderer filters statistically where the waves are shorter than a pixel or a
