@@ -120,10 +120,10 @@ impl SunGlitter {
             // Gaussian's normalisation and the view's masking: once per batch, if a light needs them.
             // Not `get_or_insert_with`: a closure is compiled apart from the vector kernel that
             // inlines this (without its target features), which made it a twentieth of a frame.
-            if frame.is_none() {
-                frame = Some(self.frame_lanes(n, to_eye, var_x, var_y, var_mean));
-            }
-            let Some((tx, ty, norm, nv, lambda_v)) = frame else { continue };
+            let (tx, ty, norm, nv, lambda_v) = match frame {
+                Some(f) => f,
+                None => *frame.insert(self.frame_lanes(n, to_eye, var_x, var_y, var_mean)),
+            };
             let inv_nh = 1.0 / nh;
             let zx = h.dot(tx) * inv_nh;
             let zy = h.dot(ty) * inv_nh;
@@ -138,9 +138,7 @@ impl SunGlitter {
         }
         acc
     }
-}
 
-impl SunGlitter {
     /// Per lane: the tangent frame (the wind projected onto the surface of normal `n`, and across
     /// it), the slope Gaussian's normalisation, the cosine of the view and its masking Λ.
     #[inline(always)]
@@ -297,9 +295,9 @@ mod tests {
         }
     }
 
-    /// erfc by its continued fraction-free series (Abramowitz and Stegun 7.1.26 is too coarse here).
+    /// erfc(x) = 2/sqrt(π) ∫_x^∞ e^(−t²) dt by a fine midpoint rule (Abramowitz and Stegun's
+    /// 7.1.26 is too coarse for the tolerance here); the integrand is below e^-100 ten past x.
     fn erfc(x: f64) -> f64 {
-        // 1 − erf by a fine midpoint rule of 2/sqrt(π) ∫_x^∞ e^(−t²) dt.
         let n = 200_000;
         let top = x + 10.0;
         let h = (top - x) / n as f64;

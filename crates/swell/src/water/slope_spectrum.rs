@@ -33,7 +33,9 @@ pub fn cox_munk_slope_variance(u10: f32) -> f32 {
 /// speed `u10` (m/s, 10 m up): `3.16e-3 U` and `0.003 + 1.92e-3 U` with U the wind at 12.5 m,
 /// their anemometer's height, taken from U10 by the 1/7 power law (`U12.5 = 1.032 U10`). Every
 /// wave down to the capillaries: the distribution the sun's glitter shows
-/// ([`crate::scene::GlitterModel::CoxMunk`]). Negative or NaN speeds read as calm.
+/// ([`crate::scene::GlitterModel::CoxMunk`]). Negative or NaN speeds read as calm. Their sum is
+/// not [`cox_munk_slope_variance`]: Cox and Munk fitted the total on its own (`0.003 + 5.12e-3
+/// U`), and the whitecaps keep that fit.
 pub fn cox_munk_axis_variances(u10: f32) -> glam::Vec2 {
     let u = u10.max(0.0) * 1.25f32.powf(1.0 / 7.0);
     glam::Vec2::new(3.16e-3 * u, 0.003 + 1.92e-3 * u)
