@@ -767,7 +767,7 @@ pub unsafe extern "C" fn swell_scene_render_rgba8(
         check_len("rgba_len", rgba_len, expected, &format!("4 bytes x {} x {} pixels", r.width, r.height))?;
         s.pool.install(|| -> swell_lib::Result<()> {
             state.world.update(t)?;
-            state.renderer.render(&state.world).encode_rgba8(r.exposure, r.gamma, &mut state.rgba);
+            state.renderer.render(&state.world).encode_rgba8(&r.display_encoding(), &mut state.rgba);
             Ok(())
         })?;
         // SAFETY: length checked; the caller promises the buffer holds it.

@@ -173,7 +173,7 @@ fn a_rendered_frame_is_the_library_s() {
     world.update(2.0).unwrap();
     let mut expected = Vec::new();
     let r = world.scene.render;
-    Renderer::new().render(&world).encode_rgba8(r.exposure, r.gamma, &mut expected);
+    Renderer::new().render(&world).encode_rgba8(&r.display_encoding(), &mut expected);
     assert_eq!(rgba, expected);
     let r = unsafe { swell_scene_render_rgba8(scene, 2.0, rgba.as_mut_ptr(), rgba.len() - 1) };
     assert_eq!(r, SwellResult::InvalidArgument);

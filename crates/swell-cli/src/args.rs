@@ -66,9 +66,9 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub source: SceneSource,
     /// Output file: `.png` for one frame, or `.exr` for one frame's linear scene radiance (float
-    /// RGB, the pixels before exposure and the sRGB curve, for compositing and measuring); with
-    /// --frames, `.gif` for an animation or a PNG sequence pattern such as `frames/sea_%04d.png`
-    /// (one file per frame, `%04d` replaced by the frame number zero-padded to 4 digits; `%d`
+    /// RGB in units of 20,000 cd/m², the pixels before exposure and the tone curve, for compositing
+    /// and measuring); with --frames, `.gif` for an animation or a PNG sequence pattern such as
+    /// `frames/sea_%04d.png` (one file per frame, `%04d` replaced by the frame number zero-padded to 4 digits; `%d`
     /// unpadded, `%0Nd` for N in [1, 9], `%%` a literal %; the directory must exist).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
@@ -106,6 +106,18 @@ pub struct RenderArgs {
     /// colour (default: the scene's render.supersample).
     #[arg(long, value_name = "N")]
     pub supersample: Option<u32>,
+    /// The camera's exposure value at ISO 100, in [-6, 24] (scene's render.ev100; 15 is the
+    /// sunny-16 rule's sunlit scene): the luminance 1.2 x 2^EV cd/m² is exposed to white. Turns
+    /// the scene's auto_exposure off
+    #[arg(long, value_name = "EV", allow_hyphen_values = true)]
+    pub ev100: Option<f32>,
+    /// Meter each frame and expose for its log-average luminance (scene's render.auto_exposure).
+    /// Turns the scene's ev100 off
+    #[arg(long, conflicts_with = "ev100")]
+    pub auto_exposure: bool,
+    /// The curve from exposed radiance to the display: aces or clip (scene's render.tone_curve)
+    #[arg(long, value_name = "CURVE")]
+    pub tone_curve: Option<String>,
     /// PNG sequence only: skip frames whose file is already a complete PNG of the image's size
     /// (a killed run continues where it stopped; a truncated or foreign file is rendered again).
     #[arg(long)]

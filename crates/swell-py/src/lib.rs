@@ -452,7 +452,7 @@ fn render<'py>(
             let mut world = World::new(scene)?;
             world.update(t)?;
             let mut rgba = Vec::new();
-            Renderer::new().render(&world).encode_rgba8(r.exposure, r.gamma, &mut rgba);
+            Renderer::new().render(&world).encode_rgba8(&r.display_encoding(), &mut rgba);
             let rgb: Vec<u8> = rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
             Ok((r.width as usize, r.height as usize, rgb))
         })

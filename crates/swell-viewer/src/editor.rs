@@ -335,7 +335,7 @@ mod tests {
             world.update(2.5).unwrap();
             let mut rgba = Vec::new();
             let s = ed.scene().render;
-            Renderer::new().render_size(&world, 160, 90).encode_rgba8(s.exposure, s.gamma, &mut rgba);
+            Renderer::new().render_size(&world, 160, 90).encode_rgba8(&s.display_encoding(), &mut rgba);
             rgba
         };
         assert_eq!(pixels(&e), pixels(&loaded));

@@ -158,7 +158,7 @@ impl Worker {
             world.update(key.time)?;
             let t1 = Instant::now();
             let r = world.scene.render;
-            renderer.render_size(world, w, h).encode_rgba8(r.exposure, r.gamma, rgba);
+            renderer.render_size(world, w, h).encode_rgba8(&r.display_encoding(), rgba);
             times.simulate = t1 - t0;
             times.render = t1.elapsed();
             Ok(())
@@ -208,7 +208,7 @@ mod tests {
             world.update(time).unwrap();
             let mut rgba = Vec::new();
             let r = scene.render;
-            Renderer::new().render_size(&world, SIZE[0], SIZE[1]).encode_rgba8(r.exposure, r.gamma, &mut rgba);
+            Renderer::new().render_size(&world, SIZE[0], SIZE[1]).encode_rgba8(&r.display_encoding(), &mut rgba);
             rgba
         })
     }

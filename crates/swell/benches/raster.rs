@@ -124,7 +124,7 @@ fn ocean<M: Measurement + 'static>(c: &mut Criterion<M>, prefix: &str) {
                 pool.install(|| {
                     t += 1.0 / 30.0;
                     world.update(t).unwrap();
-                    renderer.render_size(&world, 1280, 720).encode_rgba8(r.exposure, r.gamma, &mut rgba);
+                    renderer.render_size(&world, 1280, 720).encode_rgba8(&r.display_encoding(), &mut rgba);
                     rgba[0]
                 })
             })

@@ -26,7 +26,7 @@ fn main() -> swell::Result<()> {
     let mut world = World::new(scene)?;
     world.update(1.0)?;
     let mut rgba = Vec::new();
-    Renderer::new().render_size(&world, width, height).encode_rgba8(1.0, None, &mut rgba);
+    Renderer::new().render_size(&world, width, height).encode_rgba8(&world.scene.render.display_encoding(), &mut rgba);
     let out = std::env::args().nth(1).map_or_else(|| PathBuf::from("airy.png"), PathBuf::from);
     write_png(&out, width, height, &rgba)?;
     println!("wrote {}", out.display());

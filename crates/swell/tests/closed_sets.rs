@@ -4,6 +4,7 @@
 
 use swell::closed_set::ClosedSet;
 use swell::export::{ExrCompression, NormalSpace};
+use swell::math::ToneCurve;
 use swell::scene::{GlitterModel, Scene, Shading, SkyModel, WaterModelSpec, TERRAIN_GENERATORS, WATER_MODELS};
 use swell::spectrum::{SpectrumKind, SpreadingFunction};
 
@@ -40,6 +41,7 @@ fn every_closed_set_round_trips_through_its_names() {
     round_trips::<NormalSpace>();
     round_trips::<SkyModel>();
     round_trips::<GlitterModel>();
+    round_trips::<ToneCurve>();
 }
 
 #[test]
@@ -51,6 +53,7 @@ fn the_scene_format_documents_every_member() {
         .chain(SpreadingFunction::NAMES)
         .chain(SkyModel::NAMES)
         .chain(GlitterModel::NAMES)
+        .chain(ToneCurve::NAMES)
         .chain(WATER_MODELS)
         .chain(TERRAIN_GENERATORS);
     for name in names {

@@ -30,7 +30,7 @@ fn render(scene: &Scene) -> Framebuffer {
 
 fn rgba(fb: &Framebuffer, scene: &Scene) -> Vec<u8> {
     let mut out = Vec::new();
-    fb.encode_rgba8(scene.render.exposure, scene.render.gamma, &mut out);
+    fb.encode_rgba8(&scene.render.display_encoding(), &mut out);
     out
 }
 

@@ -4,12 +4,14 @@
 //!
 //! The metric isolates the foam: the frame with foam minus the frame with `foam = false`, once
 //! with one sample per pixel and once supersampled, compared as an RMS over R, G and B in grey
-//! levels (8-bit sRGB). The sea without foam is within about 1 level in every band, so what is
+//! levels (8-bit sRGB, the linear frame clipped: `tone_curve = "clip"`, so that the levels stay
+//! those of the history below and the filmic curve's slope does not enter the metric). The sea without foam is within about 1 level in every band, so what is
 //! left is the foam's own aliasing. Before the pattern had levels of detail (a fixed hand-over
 //! to the plain coverage between 90 and 270 m) the two nearer bands were 11.6 and 12.2 levels at
 //! this size and the near band's foam was 17 % too faint; with them they are 5.6 and 4.3, the
 //! mean within 3 % (the far band, 3.0 before, is 3.1).
 
+use swell::math::ToneCurve;
 use swell::render::Renderer;
 use swell::scene::{preset, Scene, WaterModelSpec};
 use swell::world::World;
@@ -25,11 +27,12 @@ fn render(scene: &Scene, n: u32) -> Vec<u8> {
     scene.render.width = WIDTH;
     scene.render.height = HEIGHT;
     scene.render.supersample = n;
+    scene.render.tone_curve = ToneCurve::Clip;
     let mut world = World::new(scene).unwrap();
     world.update(T).unwrap();
     let r = world.scene.render;
     let mut rgba = Vec::new();
-    Renderer::new().render(&world).encode_rgba8(r.exposure, r.gamma, &mut rgba);
+    Renderer::new().render(&world).encode_rgba8(&r.display_encoding(), &mut rgba);
     rgba
 }
 

@@ -28,11 +28,11 @@ fn golden_path(name: &str) -> PathBuf {
 fn render(mut scene: Scene) -> Vec<u8> {
     scene.render.width = WIDTH;
     scene.render.height = HEIGHT;
-    let (exposure, gamma) = (scene.render.exposure, scene.render.gamma);
+    let encoding = scene.render.display_encoding();
     let mut world = World::new(scene).unwrap();
     world.update(1.5).unwrap();
     let mut rgba = Vec::new();
-    Renderer::new().render(&world).encode_rgba8(exposure, gamma, &mut rgba);
+    Renderer::new().render(&world).encode_rgba8(&encoding, &mut rgba);
     rgba
 }
 

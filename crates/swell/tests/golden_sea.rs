@@ -20,7 +20,7 @@ fn render(name: &str, t: f64) -> Vec<u8> {
     world.update(t).unwrap();
     let mut rgba = Vec::new();
     let r = world.scene.render;
-    Renderer::new().render(&world).encode_rgba8(r.exposure, r.gamma, &mut rgba);
+    Renderer::new().render(&world).encode_rgba8(&r.display_encoding(), &mut rgba);
     rgba
 }
 

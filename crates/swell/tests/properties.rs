@@ -117,9 +117,8 @@ fn render_or_refuse(text: &str, t: f64) -> Result<bool, TestCaseError> {
     let fb = renderer.render(&world);
     prop_assert_eq!((fb.width(), fb.height()), (32, 18));
     prop_assert!(fb.color.iter().all(|c| c.is_finite()), "non-finite pixel");
-    let (exposure, gamma) = (world.scene.render.exposure, world.scene.render.gamma);
     let mut rgba = Vec::new();
-    fb.encode_rgba8(exposure, gamma, &mut rgba);
+    fb.encode_rgba8(&world.scene.render.display_encoding(), &mut rgba);
     prop_assert_eq!(rgba.len(), 32 * 18 * 4);
     Ok(true)
 }

@@ -67,7 +67,8 @@ fn encoded_ocean_frames_are_byte_identical_on_one_and_two_threads() {
             for (k, exposure) in [1.0, 1.0, 1.6].into_iter().enumerate() {
                 world.update(2.0 + k as f64 / 30.0).unwrap();
                 let mut rgba = Vec::new();
-                renderer.render_size(&world, 240, 135).encode_rgba8(exposure, None, &mut rgba);
+                let encoding = world.scene.render.display_encoding();
+                renderer.render_size(&world, 240, 135).encode_rgba8(&encoding.with_exposure(exposure), &mut rgba);
                 frames.push(rgba);
             }
             frames

@@ -156,7 +156,7 @@ fn frame(scene: &Scene, t: f64) -> Vec<[u8; 3]> {
     let mut world = World::new(scene.clone()).unwrap();
     world.update(t).unwrap();
     let mut rgba = Vec::new();
-    Renderer::new().render(&world).encode_rgba8(scene.render.exposure, scene.render.gamma, &mut rgba);
+    Renderer::new().render(&world).encode_rgba8(&scene.render.display_encoding(), &mut rgba);
     rgba.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect()
 }
 

@@ -25,7 +25,7 @@ fn render(scene: &Scene, t: f64) -> Vec<u8> {
     let r = world.scene.render;
     let fb = Renderer::new().render(&world).clone();
     assert!(fb.color.iter().all(|c| c.is_finite()), "a pixel is not finite");
-    fb.encode_rgba8(r.exposure, r.gamma, &mut rgba);
+    fb.encode_rgba8(&r.display_encoding(), &mut rgba);
     rgba
 }
 

@@ -11,6 +11,7 @@ use swell::export::{
     pending_frames, write_exr_rgb, write_gif, write_png, write_png_sequence, ExrCompression, FramePattern, FrameRange,
     MAX_FPS, MAX_GIF_FPS,
 };
+use swell::math::{DisplayEncoding, ToneCurve, RADIANCE_UNIT_NITS};
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
 use swell::scene::Shading;
@@ -26,7 +27,7 @@ use swell::limits::MAX_FRAMES;
 
 enum Output {
     Png,
-    /// One frame's linear scene radiance: the framebuffer before exposure and the sRGB curve.
+    /// One frame's linear scene radiance: the framebuffer before exposure and the tone curve.
     Exr,
     Gif {
         frames: FrameRange,
@@ -65,7 +66,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
     let threads = a.threads.unwrap_or(scene.render.threads);
     let pool = thread_pool(threads)?;
     let (width, height) = (scene.render.width, scene.render.height);
-    let (exposure, gamma) = (scene.render.exposure, scene.render.gamma);
+    let encoding = scene.render.display_encoding();
     let mut world = World::new(scene)?;
     let mut renderer = Renderer::new();
     if let Output::Exr = output {
@@ -78,10 +79,16 @@ pub fn run(a: RenderArgs) -> Result<()> {
     // never during them, so this is the time the frames alone take.
     let mut render_time = Duration::ZERO;
     let mut rendered = 0u32;
+    // The metered exposures of the frames (EV100), lowest and highest, for --verbose.
+    let mut metered = (f32::INFINITY, f32::NEG_INFINITY);
     let mut render_frame = |world: &mut World, t: f64, rgba: &mut Vec<u8>| -> Result<()> {
         let start = Instant::now();
         world.update(t)?;
-        renderer.render(world).encode_rgba8(exposure, gamma, rgba);
+        let used = renderer.render(world).encode_rgba8(&encoding, rgba);
+        if encoding.auto_exposure {
+            let ev = (RADIANCE_UNIT_NITS * encoding.exposure / (1.2 * used.exposure)).log2();
+            metered = (metered.0.min(ev), metered.1.max(ev));
+        }
         render_time += start.elapsed();
         rendered += 1;
         Ok(())
@@ -171,6 +178,9 @@ pub fn run(a: RenderArgs) -> Result<()> {
             1e3 * render / f64::from(rendered.max(1)),
             total / render.max(1e-9),
         );
+        if encoding.auto_exposure {
+            eprintln!("metered EV100 {:.2} to {:.2}", metered.0, metered.1);
+        }
     }
     Ok(())
 }
@@ -219,6 +229,23 @@ fn scene_with_flags(a: &RenderArgs, last_time: f64) -> Result<Scene> {
     }
     scene.render.wireframe |= a.wireframe;
     scene.render.normals |= a.normals;
+    if let Some(ev) = a.ev100 {
+        scene.render.ev100 = Some(ev);
+        scene.render.auto_exposure = false;
+    }
+    if a.auto_exposure {
+        scene.render.auto_exposure = true;
+        scene.render.ev100 = None;
+    }
+    if let Some(name) = &a.tone_curve {
+        scene.render.tone_curve = ToneCurve::parse("--tone-curve", name)?;
+    }
+    scene.render.validate("render").map_err(|e| match e {
+        Error::OutOfRange { key, value, range } if key == "render.ev100" => {
+            Error::OutOfRange { key: "--ev100".into(), value, range }
+        }
+        other => other,
+    })?;
     if let Some(n) = a.supersample {
         scene.render.supersample = n;
         scene.render.validate("render").map_err(|e| match e {
@@ -407,7 +434,9 @@ fn run_mesh(a: &RenderArgs) -> Result<()> {
             times.push(start.elapsed().as_secs_f64() * 1e3);
         }
         // No gamma: the bytes are what an OpenGL RGBA8 framebuffer holds, round(255 c).
-        renderer.render(&mesh, &camera, width, height, &light, shading).encode_rgba8(1.0, Some(1.0), &mut rgba);
+        renderer
+            .render(&mesh, &camera, width, height, &light, shading)
+            .encode_rgba8(&DisplayEncoding::clipped(1.0, Some(1.0)), &mut rgba);
     });
     write_png(&a.out, width, height, &rgba)?;
     if a.repeat.is_some() {

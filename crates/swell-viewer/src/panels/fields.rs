@@ -326,6 +326,8 @@ mod tests {
         check::<SpreadingFunction>();
         check::<Edges>();
         check::<swell::scene::SkyModel>();
+        check::<swell::scene::GlitterModel>();
+        check::<swell::math::ToneCurve>();
     }
 
     /// Arrow presses (one per frame, as a held key sends them) move a count in steps by whole

@@ -1,7 +1,9 @@
-//! The render panel: exposure, display gamma, ambient light, worker threads, supersampling, the
-//! overlays and the image size `swell render` uses for this scene.
+//! The render panel: exposure (a factor, a camera's EV100 or metered per frame), the tone curve,
+//! display gamma, ambient light, worker threads, supersampling, the overlays and the image size
+//! `swell render` uses for this scene.
 
 use eframe::egui::{DragValue, Ui};
+use swell::math::RADIANCE_UNIT_NITS;
 use swell::scene::RenderSettings;
 
 use super::{fields, keys};
@@ -13,7 +15,23 @@ pub const DEFAULT_POWER_GAMMA: f32 = 2.2;
 pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
     let mut changed = false;
     fields::grid("render").show(ui, |ui| {
-        changed |= fields::number(ui, "exposure", &mut render.exposure, 0.01, "");
+        changed |=
+            fields::number(ui, "exposure (factor; compensation with EV100 or auto)", &mut render.exposure, 0.01, "");
+        // Switched on, EV100 starts where exposure alone was, so the picture does not jump.
+        let unit_ev = (RADIANCE_UNIT_NITS / 1.2).log2();
+        let mut ev_changed = fields::optional_number(ui, "EV100 [-6, 24]", &mut render.ev100, unit_ev, 0.02, " EV");
+        if ev_changed && render.ev100.is_some() {
+            // EV100 and metering exclude each other (validation refuses both).
+            render.auto_exposure = false;
+        }
+        if fields::flag(ui, "auto exposure (metered per frame)", &mut render.auto_exposure) {
+            if render.auto_exposure {
+                render.ev100 = None;
+            }
+            ev_changed = true;
+        }
+        changed |= ev_changed;
+        changed |= fields::member(ui, "tone curve", &mut render.tone_curve);
         ui.label("encoding");
         ui.horizontal(|ui| {
             let mut power = render.gamma.is_some();
@@ -48,7 +66,20 @@ pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
     });
     keys::edits(
         "render",
-        &["exposure", "gamma", "ambient", "threads", "supersample", "width", "height", "wireframe", "normals"],
+        &[
+            "exposure",
+            "ev100",
+            "auto_exposure",
+            "tone_curve",
+            "gamma",
+            "ambient",
+            "threads",
+            "supersample",
+            "width",
+            "height",
+            "wireframe",
+            "normals",
+        ],
     );
     ui.small("The view renders at the window's size; the saved size is what `swell render` uses.");
     changed

@@ -1,7 +1,7 @@
 //! The sky panel: the model (gradient or Preetham's physical sky), the gradient's horizon, zenith
-//! and below-horizon colours (linear RGB), the sun's angles, the turbidity, the luminance scale,
-//! the haze distance, whether the sun drives the first light, and the sun disc's direction,
-//! angular size and intensity.
+//! and below-horizon colours (linear RGB, in the renderer's 20,000 cd/m² unit), the sun's angles,
+//! the turbidity, the haze distance, whether the sun drives the first light, and the sun disc's
+//! direction and angular size (its radiance follows from the sunlight).
 
 use eframe::egui::Ui;
 use glam::Vec3;
@@ -21,7 +21,6 @@ pub fn show(ui: &mut Ui, sky: &mut Sky) -> bool {
         changed |= fields::number(ui, "sun elevation [-10, 90]", &mut sky.sun_elevation_deg, 0.2, " deg");
         changed |= fields::number(ui, "sun azimuth from north (-Z) [0, 360)", &mut sky.sun_azimuth_deg, 0.5, " deg");
         changed |= fields::number(ui, "turbidity [1.7, 10]", &mut sky.turbidity, 0.05, "");
-        changed |= fields::number(ui, "luminance scale (per kcd/m²)", &mut sky.luminance_scale, 0.002, "");
         changed |= fields::number(ui, "haze distance (0: off)", &mut sky.haze_distance, 5.0, " m");
         changed |= fields::flag(ui, "sun drives the first light", &mut sky.sun_drives_light);
         changed |= fields::color(ui, "horizon", &mut sky.horizon);
@@ -35,7 +34,6 @@ pub fn show(ui: &mut Ui, sky: &mut Sky) -> bool {
             0.01,
         );
         changed |= fields::number(ui, "sun size", &mut sky.sun_size_deg, 0.01, " deg");
-        changed |= fields::number(ui, "sun intensity", &mut sky.sun_intensity, 0.1, "");
     });
     keys::edits(
         "sky",
@@ -44,7 +42,6 @@ pub fn show(ui: &mut Ui, sky: &mut Sky) -> bool {
             "sun_elevation_deg",
             "sun_azimuth_deg",
             "turbidity",
-            "luminance_scale",
             "haze_distance",
             "sun_drives_light",
             "horizon",
@@ -52,7 +49,6 @@ pub fn show(ui: &mut Ui, sky: &mut Sky) -> bool {
             "ground",
             "sun_direction",
             "sun_size_deg",
-            "sun_intensity",
         ],
     );
     changed

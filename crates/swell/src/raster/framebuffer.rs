@@ -5,10 +5,21 @@ use std::sync::{Arc, Mutex};
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::rgba8_encoder::{encode_channel, Rgba8Encoder};
+use super::rgba8_encoder::Rgba8Encoder;
+use crate::math::{ev100_exposure, fast_log2, metered_ev100, DisplayEncoding};
 
 /// Rows per task of [`Framebuffer::fill_background_rows`].
 const BACKGROUND_ROWS: usize = 8;
+
+/// Metering samples every `METER_STRIDE`-th pixel of every `METER_STRIDE`-th row: 57,600 of a
+/// 1280 x 720 frame, plenty for an average and a tenth of a millisecond.
+const METER_STRIDE: usize = 4;
+/// Luminance floor of metering, renderer units (0.1 cd/m²): black pixels count as very dark
+/// rather than as minus infinity.
+const METER_FLOOR: f32 = 5e-6;
+/// Metered exposures are rounded to this fraction of a stop, so that a frame and its neighbours
+/// share an encoding table (and a moving speck cannot change every byte).
+const METER_STEPS_PER_STOP: f32 = 64.0;
 
 /// A linear-RGB colour buffer with a depth buffer, top row first.
 #[derive(Clone, Debug)]
@@ -19,26 +30,26 @@ pub struct Framebuffer {
     pub color: Vec<Vec3>,
     /// Window-space depth per pixel in [0, 1] (0 = near plane), cleared to 1.
     pub depth: Vec<f32>,
-    /// The last [`Framebuffer::encode_rgba8`]'s table, reused while exposure and gamma stay.
+    /// The last [`Framebuffer::encode_rgba8`]'s table, reused while the encoding stays.
     encoder: EncoderCache,
 }
 
-/// The encoding table of the last (exposure, gamma), kept so that steady-state frames neither
+/// The encoding table of the last encoding, kept so that steady-state frames neither
 /// rebuild it (a serial step of about 8,000 curve evaluations) nor allocate. Behind a mutex
 /// because encoding takes `&self`; a clone starts empty.
 #[derive(Default)]
 struct EncoderCache(Mutex<Option<Arc<Rgba8Encoder>>>);
 
 impl EncoderCache {
-    /// The table for (`exposure`, `gamma`), built on first use or when they change; `None` when
-    /// [`Rgba8Encoder::new`] refuses them.
-    fn get(&self, exposure: f32, gamma: Option<f32>) -> Option<Arc<Rgba8Encoder>> {
+    /// The table for `encoding` (metering resolved), built on first use or when it changes;
+    /// `None` when [`Rgba8Encoder::new`] refuses it.
+    fn get(&self, encoding: &DisplayEncoding) -> Option<Arc<Rgba8Encoder>> {
         // A poisoned lock only means a panic elsewhere mid-update; the slot is rebuilt below.
         let mut slot = self.0.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(t) = slot.as_ref().filter(|t| t.encodes(exposure, gamma)) {
+        if let Some(t) = slot.as_ref().filter(|t| t.encodes(encoding)) {
             return Some(Arc::clone(t));
         }
-        *slot = Rgba8Encoder::new(exposure, gamma).map(Arc::new);
+        *slot = Rgba8Encoder::new(encoding).map(Arc::new);
         slot.clone()
     }
 }
@@ -110,24 +121,52 @@ impl Framebuffer {
         rows.for_each(|(y, (colors, depth))| row(y as u32, colors, depth));
     }
 
-    /// Encodes to RGBA8 (alpha 255): colour times `exposure`, then the sRGB curve, or the power
-    /// law `c^(1/gamma)` when `gamma` is given. `out` is resized to `4 * width * height`.
-    pub fn encode_rgba8(&self, exposure: f32, gamma: Option<f32>, out: &mut Vec<u8>) {
+    /// Encodes to RGBA8 (alpha 255) with `encoding` ([`DisplayEncoding::encode`]: exposure, tone
+    /// curve, sRGB or power law); with `auto_exposure`, the exposure is first metered from this
+    /// frame ([`Self::metered_ev100`]) and multiplied by `encoding.exposure`. `out` is resized to
+    /// `4 * width * height`. Returns the encoding used, metering resolved.
+    pub fn encode_rgba8(&self, encoding: &DisplayEncoding, out: &mut Vec<u8>) -> DisplayEncoding {
+        let encoding = match encoding.auto_exposure {
+            true => encoding.with_exposure(encoding.exposure * ev100_exposure(self.metered_ev100())),
+            false => *encoding,
+        };
         out.resize(self.color.len() * 4, 0);
         let w = self.width as usize;
         if w == 0 {
-            return;
+            return encoding;
         }
-        let table = self.encoder.get(exposure, gamma);
+        let table = self.encoder.get(&encoding);
         out.par_chunks_mut(4 * w).zip(self.color.par_chunks(w)).for_each(|(dst, src)| match &table {
             Some(t) => t.encode_row(src, dst),
             None => {
                 for (px, c) in dst.chunks_exact_mut(4).zip(src) {
-                    let e = |v: f32| encode_channel(v, exposure, gamma);
+                    let e = |v: f32| encoding.encode(v);
                     px.copy_from_slice(&[e(c.x), e(c.y), e(c.z), 255]);
                 }
             }
         });
+        encoding
+    }
+
+    /// The EV100 that exposes this frame's log-average to 0.18 of white ([`metered_ev100`]): the mean
+    /// log2 luminance (Rec. 709 weights, floored at 0.1 cd/m²; NaN pixels skipped) over a fixed
+    /// grid of every fourth pixel of every fourth row, summed in row order in f64, so the result
+    /// depends on the pixels only; rounded to 1/64 stop. An empty frame meters the range's middle.
+    pub fn metered_ev100(&self) -> f32 {
+        let w = self.width as usize;
+        let (mut sum, mut n) = (0.0f64, 0u32);
+        for row in self.color.chunks(w.max(1)).step_by(METER_STRIDE) {
+            for c in row.iter().step_by(METER_STRIDE) {
+                let y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+                if y.is_nan() {
+                    continue;
+                }
+                sum += f64::from(fast_log2(y.clamp(METER_FLOOR, f32::MAX)));
+                n += 1;
+            }
+        }
+        let mean = if n == 0 { f32::NAN } else { (sum / f64::from(n)) as f32 };
+        (metered_ev100(mean) * METER_STEPS_PER_STOP).round() / METER_STEPS_PER_STOP
     }
 
     /// Makes `self` the box-filtered reduction of `src` by `factor` per axis: each pixel is the
@@ -163,6 +202,7 @@ impl Framebuffer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::ToneCurve;
 
     #[test]
     fn downsampling_averages_linear_colour_in_blocks() {
@@ -184,13 +224,44 @@ mod tests {
             (0..33).map(|i| Vec3::new(i as f32 / 40.0, (i as f32 * 0.37).fract(), 1.0 / (1.0 + i as f32))).collect();
         fb.color[5] = Vec3::new(f32::NAN, -1.0, f32::INFINITY);
         let mut out = Vec::new();
+        let aces =
+            |exposure| DisplayEncoding { tone_curve: ToneCurve::Aces, ..DisplayEncoding::clipped(exposure, None) };
         // The cached table must follow each change; exposure 0 has no table (direct curve).
-        for (exposure, gamma) in [(1.0, None), (2.0, None), (2.0, Some(2.2)), (1.0, None), (0.0, None), (1.0, None)] {
-            fb.encode_rgba8(exposure, gamma, &mut out);
+        let encodings = [
+            DisplayEncoding::clipped(1.0, None),
+            DisplayEncoding::clipped(2.0, None),
+            DisplayEncoding::clipped(2.0, Some(2.2)),
+            aces(2.0),
+            DisplayEncoding::clipped(1.0, None),
+            DisplayEncoding::clipped(0.0, None),
+            aces(1.0),
+        ];
+        for enc in encodings {
+            assert_eq!(fb.encode_rgba8(&enc, &mut out), enc);
             for (px, c) in out.chunks_exact(4).zip(&fb.color) {
-                let e = |v| encode_channel(v, exposure, gamma);
-                assert_eq!(px, [e(c.x), e(c.y), e(c.z), 255], "{c} at {exposure} {gamma:?}");
+                assert_eq!(px, [enc.encode(c.x), enc.encode(c.y), enc.encode(c.z), 255], "{c} at {enc:?}");
             }
         }
+    }
+
+    #[test]
+    fn metering_exposes_the_log_average_and_ignores_nan() {
+        let mut fb = Framebuffer::new(64, 32);
+        // Half the sampled pixels at 0.02, half at 0.08 units: log-average 0.04 (800 cd/m²).
+        for (i, c) in fb.color.iter_mut().enumerate() {
+            let row = i / 64;
+            *c = Vec3::splat(if (row / 4) % 2 == 0 { 0.02 } else { 0.08 });
+        }
+        fb.color[0] = Vec3::NAN;
+        let ev = fb.metered_ev100();
+        assert!((ev - (800.0f32 / 0.216).log2()).abs() < 0.02, "{ev}");
+        let enc = DisplayEncoding { auto_exposure: true, ..DisplayEncoding::clipped(1.0, None) };
+        let mut out = Vec::new();
+        let used = fb.encode_rgba8(&enc, &mut out);
+        assert!(!used.auto_exposure && (used.exposure - crate::math::ev100_exposure(ev)).abs() < 1e-6);
+        // Compensation multiplies the metered exposure.
+        let plus = fb.encode_rgba8(&DisplayEncoding { exposure: 2.0, ..enc }, &mut out);
+        assert!((plus.exposure / used.exposure - 2.0).abs() < 1e-6);
+        assert_eq!(Framebuffer::new(0, 0).metered_ev100(), 9.0);
     }
 }

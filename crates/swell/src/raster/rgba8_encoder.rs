@@ -1,37 +1,24 @@
-//! Linear colour to display bytes, exactly as [`encode_channel`] computes them but without a
-//! `powf` per channel.
+//! Linear colour to display bytes, exactly as [`DisplayEncoding::encode`] computes them but
+//! without a tone curve and a `powf` per channel.
 //!
-//! The encoding (times exposure, the sRGB curve or `c^(1/gamma)`, rounded to a byte) is
-//! non-decreasing in the linear value, so it is fully described by the smallest linear value
-//! reaching each byte 1..=255 (its thresholds, found once by bisection over the f32 bit
+//! The encoding (times exposure, the tone curve, the sRGB curve or `c^(1/gamma)`, rounded to a
+//! byte) is non-decreasing in the linear value, so it is fully described by the smallest linear
+//! value reaching each byte 1..=255 (its thresholds, found once by bisection over the f32 bit
 //! patterns: non-negative floats order as their bits). A channel's byte is the number of those
 //! thresholds at or below it. The count comes from a table of buckets, each 1/256 of a binade
 //! (the top 16 bits of the value: exponent and 8 mantissa bits), holding the count at the bucket's
 //! lower end and the next threshold: as no two thresholds share a bucket (checked when the table
 //! is built; adjacent thresholds are at least 0.39 % apart for every valid gamma, a bucket at
-//! most 0.39 % wide), one compare finishes the count.
+//! most 0.39 % wide, and the tone curves only spread them), one compare finishes the count.
 //!
 //! History (callgrind, one 1280 x 720 `ocean` frame): three `powf` per pixel, 271 M instructions;
 //! a binary search over the thresholds, 102 M; a table indexed by sign, exponent and 7 mantissa
 //! bits finished by a compare loop, 61 M (about 20 instructions per channel); this table, built
-//! once per (exposure, gamma) and read eight channels at a time with AVX2 gathers where the CPU
-//! has them.
+//! once per encoding and read eight channels at a time with AVX2 gathers where the CPU has them.
 
 use glam::Vec3;
 
-use crate::math::linear_to_srgb;
-
-/// One linear channel to a byte: times `exposure`, the sRGB curve or `c^(1/gamma)`, rounded.
-/// NaN and negative values give 0. This is the definition the table reproduces.
-pub fn encode_channel(c: f32, exposure: f32, gamma: Option<f32>) -> u8 {
-    let c = c * exposure;
-    let e = match gamma {
-        None => linear_to_srgb(c),
-        Some(g) => c.clamp(0.0, 1.0).powf(1.0 / g),
-    };
-    // NaN clamps to 0 here, so a bad sample can never reach a file as garbage.
-    (e * 255.0 + 0.5).clamp(0.0, 255.0) as u8
-}
+use crate::math::DisplayEncoding;
 
 /// Right shift from an f32's bits to its bucket number: keeps sign, exponent and
 /// [`MANTISSA_BITS`] mantissa bits.
@@ -43,11 +30,10 @@ const MANTISSA_BITS: u32 = 8;
 /// (11,500 buckets, 92 KB); beyond this the caller encodes each channel with the curve.
 const MAX_BUCKETS: usize = 1 << 14;
 
-/// The byte thresholds of one (exposure, gamma) and the bucket table that counts them.
+/// The byte thresholds of one [`DisplayEncoding`] and the bucket table that counts them.
 #[derive(Debug)]
 pub struct Rgba8Encoder {
-    exposure: f32,
-    gamma: Option<f32>,
+    encoding: DisplayEncoding,
     /// Per bucket from `first` on: the number of thresholds below the bucket's lower end,
     /// and the bits of the first threshold at or above it (NaN when none is). Interleaved so that
     /// one index (times 8 bytes) reaches both, as the AVX2 gathers read them.
@@ -57,15 +43,17 @@ pub struct Rgba8Encoder {
 }
 
 impl Rgba8Encoder {
-    /// `None` when the encoding is not known to be non-decreasing (exposure not positive and
-    /// finite, gamma not positive and finite) or its thresholds do not fit the table: the
-    /// caller then encodes each channel directly with [`encode_channel`].
-    pub fn new(exposure: f32, gamma: Option<f32>) -> Option<Self> {
-        let valid_gamma = gamma.is_none_or(|g| g.is_finite() && g > 0.0);
-        if !(exposure.is_finite() && exposure > 0.0 && valid_gamma) {
+    /// The table of `encoding` (its exposure taken as is: metering is resolved before). `None`
+    /// when the encoding is not known to be non-decreasing (exposure not positive and finite,
+    /// gamma not positive and finite) or its thresholds do not fit the table: the caller then
+    /// encodes each channel directly with [`DisplayEncoding::encode`].
+    pub fn new(encoding: &DisplayEncoding) -> Option<Self> {
+        let encoding = encoding.with_exposure(encoding.exposure);
+        let valid_gamma = encoding.gamma.is_none_or(|g| g.is_finite() && g > 0.0);
+        if !(encoding.exposure.is_finite() && encoding.exposure > 0.0 && valid_gamma) {
             return None;
         }
-        let f = |bits: u32| encode_channel(f32::from_bits(bits), exposure, gamma);
+        let f = |bits: u32| encoding.encode(f32::from_bits(bits));
         // Negative values and NaN encode to 0 (they clamp to 0 first), as must 0 itself.
         if f(0) != 0 {
             return None;
@@ -114,15 +102,16 @@ impl Rgba8Encoder {
             let next = if k < finite.len() { finite[k] } else { f32::NAN };
             buckets.push([k as u32, next.to_bits()]);
         }
-        Some(Self { exposure, gamma, buckets, first })
+        Some(Self { encoding, buckets, first })
     }
 
-    /// Whether this table encodes (`exposure`, `gamma`) (compared bit for bit).
-    pub fn encodes(&self, exposure: f32, gamma: Option<f32>) -> bool {
-        self.exposure.to_bits() == exposure.to_bits() && self.gamma.map(f32::to_bits) == gamma.map(f32::to_bits)
+    /// Whether this table encodes `encoding` (metering resolved; compared bit for bit).
+    pub fn encodes(&self, encoding: &DisplayEncoding) -> bool {
+        self.encoding.same_as(encoding)
     }
 
-    /// The byte of linear channel value `c`, equal to `encode_channel(c, exposure, gamma)`.
+    /// The byte of linear channel value `c`, equal to `self`'s encoding's
+    /// [`DisplayEncoding::encode`].
     #[inline]
     pub fn encode(&self, c: f32) -> u8 {
         // Negative values, zero and NaN all encode to 0 (every threshold is positive).
@@ -198,6 +187,7 @@ impl Rgba8Encoder {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::ToneCurve;
 
     /// Values where the encoding changes or could go wrong: dense over [0, 1.33], each threshold
     /// and its neighbouring floats, every bucket's lower end, and the special values.
@@ -216,32 +206,44 @@ mod tests {
         values
     }
 
-    #[test]
-    fn the_table_encodes_exactly_like_the_direct_curve() {
-        for (exposure, gamma) in [(1.0, None), (1.7, None), (1.0, Some(1.0)), (0.6, Some(2.2)), (100.0, Some(5.0))] {
-            let table = Rgba8Encoder::new(exposure, gamma).unwrap();
-            assert!(table.encodes(exposure, gamma) && !table.encodes(exposure * 2.0, gamma));
-            for c in probes(&table) {
-                assert_eq!(table.encode(c), encode_channel(c, exposure, gamma), "c = {c}, {exposure} {gamma:?}");
-            }
-        }
-        assert!(Rgba8Encoder::new(0.0, None).is_none());
-        assert!(Rgba8Encoder::new(1.0, Some(f32::NAN)).is_none());
+    fn encoding(exposure: f32, gamma: Option<f32>, tone_curve: ToneCurve) -> DisplayEncoding {
+        DisplayEncoding { exposure, auto_exposure: false, tone_curve, gamma }
     }
 
     #[test]
-    fn every_valid_exposure_and_gamma_gets_a_one_compare_table() {
-        // `[render]` allows exposure in [1e-6, 100] and gamma in [1, 5] or sRGB.
-        for exposure in [1e-6, 0.01, 0.5, 1.0, 3.0, 100.0] {
+    fn the_table_encodes_exactly_like_the_direct_curve() {
+        for curve in ToneCurve::ALL.iter().copied() {
+            for (exposure, gamma) in [(1.0, None), (1.7, None), (1.0, Some(1.0)), (0.6, Some(2.2)), (100.0, Some(5.0))]
+            {
+                let enc = encoding(exposure, gamma, curve);
+                let table = Rgba8Encoder::new(&enc).unwrap();
+                assert!(table.encodes(&enc) && !table.encodes(&enc.with_exposure(exposure * 2.0)));
+                for c in probes(&table) {
+                    assert_eq!(table.encode(c), enc.encode(c), "c = {c}, {enc:?}");
+                }
+            }
+        }
+        assert!(Rgba8Encoder::new(&DisplayEncoding::clipped(0.0, None)).is_none());
+        assert!(Rgba8Encoder::new(&DisplayEncoding::clipped(1.0, Some(f32::NAN))).is_none());
+    }
+
+    #[test]
+    fn every_valid_encoding_gets_a_one_compare_table() {
+        // `[render]` allows an exposure in [1e-6, 100] times EV100's factor (1e-5 at EV100 24 to
+        // 1e6 at -6) and gamma in [1, 5] or sRGB.
+        for exposure in [1e-11, 1e-6, 0.01, 0.5, 1.0, 3.0, 100.0, 1e8] {
             for gamma in [None, Some(1.0), Some(1.5), Some(2.2), Some(3.7), Some(5.0)] {
-                assert!(Rgba8Encoder::new(exposure, gamma).is_some(), "{exposure} {gamma:?}");
+                for curve in ToneCurve::ALL.iter().copied() {
+                    let enc = encoding(exposure, gamma, curve);
+                    assert!(Rgba8Encoder::new(&enc).is_some(), "{enc:?}");
+                }
             }
         }
     }
 
     #[test]
     fn rows_encode_like_single_channels_whatever_their_length() {
-        let table = Rgba8Encoder::new(1.3, None).unwrap();
+        let table = Rgba8Encoder::new(&encoding(1.3, None, ToneCurve::Aces)).unwrap();
         let values = probes(&table);
         // Lengths around the 8-pixel groups of the AVX2 path, and one long row of every probe.
         for len in [0, 1, 7, 8, 9, 16, 23, values.len() / 3] {

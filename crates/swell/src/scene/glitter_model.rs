@@ -10,9 +10,8 @@ crate::closed_set! {
         /// a facet facing the sun reflects the sun's full radiance times Fresnel.
         #[default]
         CoxMunk = "cox-munk",
-        /// The shading model's Phong or Blinn-Phong lobe of exponent `shininess` times `specular`,
-        /// and the sun disc seen in the mirrored sky: the highlight the papers draw, with no
-        /// micro-roughness.
+        /// The shading model's Phong or Blinn-Phong lobe of exponent `shininess` times `specular`:
+        /// the highlight the papers draw, with no micro-roughness.
         Lobe = "lobe",
     }
 }

@@ -25,9 +25,12 @@ pub const TURBIDITY_RANGE: (f32, f32) = (1.7, 10.0);
 pub struct Sky {
     /// Which model computes the sky's radiance. Default `gradient`.
     pub model: SkyModel,
-    /// Linear RGB radiance at the horizon, >= 0 (`gradient`).
+    /// Linear RGB radiance at the horizon, >= 0 (`gradient`), in the renderer's unit (20,000
+    /// cd/m²). The default is the `preetham` sky's mean around the horizon with a 45° sun at
+    /// turbidity 2.5.
     pub horizon: Vec3,
-    /// Linear RGB radiance straight up, >= 0 (`gradient`).
+    /// Linear RGB radiance straight up, >= 0 (`gradient`), in the renderer's unit. The default is
+    /// the `preetham` sky's zenith with a 45° sun at turbidity 2.5.
     pub zenith: Vec3,
     /// Linear RGB radiance seen below the horizon where nothing is drawn (the far ground), >= 0.
     pub ground: Vec3,
@@ -37,11 +40,10 @@ pub struct Sky {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sun_direction: Option<Vec3>,
     /// Angular diameter of the drawn sun disc in degrees, in [0, 20]; 0 hides it. Default 1.5 (the
-    /// real sun is 0.53°; a larger disc stays visible at a few hundred pixels).
+    /// real sun is 0.53°; a larger disc stays visible at a few hundred pixels). The disc's
+    /// radiance is the sunlight's irradiance spread over it (E / Ω), so a larger disc is dimmer
+    /// and the sunlight is the same.
     pub sun_size_deg: f32,
-    /// Radiance of the disc relative to white (linear), >= 0. Default 20, so that its reflection
-    /// stays bright after Fresnel's 2 % at normal incidence.
-    pub sun_intensity: f32,
     /// Sun elevation above the horizon, degrees, in [-10, 90] (`preetham`, and the light when
     /// `sun_drives_light`). Default 45. Below 0 the sun has set: no disc, no sunlight, and the
     /// sky fades to dark at −10 (the model has no twilight of its own).
@@ -53,36 +55,30 @@ pub struct Sky {
     /// Atmospheric turbidity T (`preetham`): 2 a very clear sky, 3 clear, 6 hazy, 10 thin fog; in
     /// [1.7, 10], the range of the model's fit. Default 2.5.
     pub turbidity: f32,
-    /// Renderer radiance per kcd/m² of sky luminance (`preetham`), in (0, 10]. Default 0.05:
-    /// a 45° sun at T = 2.5 gives a zenith of about 6 kcd/m², so 0.3, and a horizon of about
-    /// 0.5 to 0.8, the range of the gradient sky; a white Lambert surface under a light of
-    /// intensity 1 is 1. Raise it for a dusk that reads as bright as day (a camera's exposure).
-    pub luminance_scale: f32,
     /// Aerial perspective: surfaces `d` metres from the eye fade towards the sky's horizon colour
     /// in the view's direction by `1 − exp(−d / haze_distance)`; metres, in [0, 1e7]; 0 (the
     /// default) turns it off.
     pub haze_distance: f32,
-    /// When true, the sun angles drive the first directional `[[light]]`: its direction becomes
-    /// the sunlight's and its colour is multiplied by the sun's transmittance through the air
-    /// relative to an overhead sun ([`Sky::sun_color`]: a low sun is dimmer and warmer), with
-    /// either model. Without a directional light it changes nothing. Default false.
+    /// When true, the sun angles drive the first directional `[[light]]`: it becomes the sun,
+    /// its direction the sunlight's and its colour multiplied by the sunlight the air lets
+    /// through ([`Sky::sunlight`], in the renderer's unit: about 1.7 for a high sun, less and
+    /// warmer for a low one), with either model; its `color` and `intensity` then scale that
+    /// sun (1 = the model's). Without a directional light it changes nothing. Default false.
     pub sun_drives_light: bool,
 }
 
 impl Default for Sky {
     fn default() -> Self {
         Self {
-            horizon: Vec3::new(0.62, 0.72, 0.82),
-            zenith: Vec3::new(0.12, 0.28, 0.62),
+            horizon: Vec3::new(0.612, 0.532, 0.602),
+            zenith: Vec3::new(0.184, 0.298, 0.599),
             ground: Vec3::new(0.18, 0.20, 0.22),
             sun_direction: None,
             sun_size_deg: 1.5,
-            sun_intensity: 20.0,
             model: SkyModel::Gradient,
             sun_elevation_deg: 45.0,
             sun_azimuth_deg: 135.0,
             turbidity: 2.5,
-            luminance_scale: 0.05,
             haze_distance: 0.0,
             sun_drives_light: false,
         }
@@ -104,16 +100,12 @@ impl Sky {
             }
         }
         check_range(&format!("{key}.sun_size_deg"), self.sun_size_deg, 0.0, 20.0)?;
-        check_non_negative(&format!("{key}.sun_intensity"), self.sun_intensity)?;
         check_range(&format!("{key}.sun_elevation_deg"), self.sun_elevation_deg, -10.0, 90.0)?;
         // [0, 360): 360 itself is refused so that every direction has one azimuth.
         if !(self.sun_azimuth_deg >= 0.0 && self.sun_azimuth_deg < 360.0) {
             return Err(Error::out_of_range(format!("{key}.sun_azimuth_deg"), self.sun_azimuth_deg, "[0, 360)"));
         }
         check_range(&format!("{key}.turbidity"), self.turbidity, TURBIDITY_RANGE.0, TURBIDITY_RANGE.1)?;
-        if !(self.luminance_scale > 0.0 && self.luminance_scale <= 10.0) {
-            return Err(Error::out_of_range(format!("{key}.luminance_scale"), self.luminance_scale, "(0, 10]"));
-        }
         check_range(&format!("{key}.haze_distance"), self.haze_distance, 0.0, 1e7)?;
         if self.model == SkyModel::Preetham && self.sun_direction.is_some() {
             return Err(Error::invalid(
@@ -155,11 +147,15 @@ mod tests {
             ("sun_azimuth_deg = -1.0", "t: sky.sun_azimuth_deg = -1 is outside [0, 360)"),
             ("turbidity = 1.5", "t: sky.turbidity = 1.5 is outside [1.7, 10]"),
             ("turbidity = 12.0", "t: sky.turbidity = 12 is outside [1.7, 10]"),
-            ("luminance_scale = 0.0", "t: sky.luminance_scale = 0 is outside (0, 10]"),
             ("haze_distance = -5.0", "t: sky.haze_distance = -5 is outside [0, 10000000]"),
         ] {
             let e = scene_with_sky(keys).err().unwrap_or_else(|| panic!("{keys} accepted"));
             assert_eq!(e.to_string(), message);
+        }
+        // The free scales of before one radiometric scale are gone, and said to be unknown.
+        for old in ["luminance_scale = 0.05", "sun_intensity = 20.0"] {
+            let e = scene_with_sky(old).err().unwrap().to_string();
+            assert!(e.contains("unknown field") && e.contains(old.split(' ').next().unwrap()), "{e}");
         }
         let e = scene_with_sky("model = 'preetham'\nsun_direction = [0.0, -1.0, 0.0]").err().unwrap();
         assert!(e.to_string().starts_with("t: sky.sun_direction"), "{e}");

@@ -12,7 +12,15 @@
 
 use glam::{DVec3, Vec3};
 
-use crate::math::xyy_to_linear_srgb;
+use crate::math::{xyy_to_linear_srgb, RADIANCE_UNIT_NITS};
+
+/// The renderer's radiance per kcd/m² of the model's luminance: 1000 / 20,000 cd/m².
+pub const SKY_LUMINANCE_TO_RADIANCE: f32 = 1000.0 / RADIANCE_UNIT_NITS;
+
+/// The luminous solar constant, klux: the sun's illuminance on a surface facing it outside the
+/// atmosphere at the mean distance (IES Lighting Handbook, 10th ed.; the value of the IES
+/// daylight formulas, `E = 127.5 exp(−c / sin α)`).
+pub const SOLAR_ILLUMINANCE_KLUX: f32 = 127.5;
 
 /// The five Perez coefficients A..E of one quantity (Y, x or y).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -140,8 +148,8 @@ impl PreethamSky {
         (v[0], v[1], v[2])
     }
 
-    /// Linear sRGB radiance along unit `dir`, in kcd/m² (luminance units: multiply by an
-    /// exposure, `[sky] luminance_scale`, to get the renderer's radiance).
+    /// Linear sRGB radiance along unit `dir`, in kcd/m² (luminance units: times
+    /// [`SKY_LUMINANCE_TO_RADIANCE`] in the renderer's unit).
     pub fn rgb(&self, dir: Vec3) -> Vec3 {
         let (y, cx, cy) = self.yxy(dir);
         xyy_to_linear_srgb(cx as f32, cy as f32, y as f32)

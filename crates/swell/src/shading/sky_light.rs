@@ -5,8 +5,8 @@
 
 use glam::Vec3;
 
-use super::preetham::sun_transmittance;
-use crate::math::{Lanes, Vec3Lanes};
+use super::preetham::{sun_transmittance, SKY_LUMINANCE_TO_RADIANCE, SOLAR_ILLUMINANCE_KLUX};
+use crate::math::{Lanes, Vec3Lanes, RADIANCE_UNIT_NITS};
 use crate::scene::{Light, Sky, SkyModel};
 
 /// The sun as drawn in the sky: a disc with a soft edge.
@@ -37,10 +37,21 @@ pub enum SunProfile {
 
 /// Limb-darkening coefficient u of [`SunProfile::LimbDarkened`].
 const LIMB_DARKENING: f32 = 0.6;
-/// Aureole radiance just outside the limb, relative to the disc's centre.
-const GLOW: f32 = 0.08;
+/// Aureole radiance just outside the limb, relative to the disc's centre: 0.2 %, the upper end of
+/// a clear sky's circumsolar jump at the limb (Buie, Monger and Dey, "Sunshape distributions for
+/// terrestrial solar simulations", Solar Energy 74, 2003: 1e-4 to 1e-2 of the centre's radiance).
+const GLOW: f32 = 2e-3;
 /// (angle / radius)² beyond which the aureole is 0: twenty radii.
 const GLOW_END: f32 = 400.0;
+/// Solid angle of a [`SunProfile::LimbDarkened`] disc per unit of its centre radiance, in units of
+/// the disc's solid angle: the darkened disc `∫0^1 1 − u (1 − sqrt(1 − x)) dx = 1 − u / 3`, less
+/// the outer 4 % of x where the limb blends into the aureole (half of it, at the limb's 0.47),
+/// plus the aureole `GLOW ∫1^400 (1/x − 1/400) dx` (x = (angle / radius)², so dΩ ∝ dx).
+const LIMB_DARKENED_SOLID_ANGLE: f32 =
+    1.0 - LIMB_DARKENING / 3.0 - 0.02 * (0.47 - GLOW) + GLOW * (5.991_465 - (GLOW_END - 1.0) / GLOW_END);
+/// The same for [`SunProfile::Smoothstep`]: full out to the radius, then a smoothstep in the
+/// cosine over three times the disc's `1 − cos r`, which holds half its weight: 1 + 1.5.
+const SMOOTHSTEP_SOLID_ANGLE: f32 = 2.5;
 
 impl SunDisc {
     /// Radiance of the disc seen along unit direction `dir`: full inside the disc, falling
@@ -103,21 +114,22 @@ impl SunDisc {
 }
 
 impl Sky {
-    /// The sunlight's colour relative to an overhead sun: Preetham et al.'s transmittance
-    /// ([`sun_transmittance`]) at `sun_elevation_deg` divided by that at 90°, per channel, so a
-    /// high sun is nearly white and a low one dim and orange; faded to 0 as the disc sinks below
-    /// the horizon (over ±0.5°).
-    pub fn sun_color(&self) -> Vec3 {
+    /// The sunlight at the ground as a directional light's colour × intensity, in the renderer's
+    /// unit (its irradiance on a surface facing the sun is π times this, 20,000 cd/m² each):
+    /// the luminous solar constant, 127.5 klux (IES Lighting Handbook; Darula et al. 2005 give
+    /// 133.8), through Preetham et al.'s transmittance ([`sun_transmittance`]) per channel at
+    /// `sun_elevation_deg` and `turbidity`, faded to 0 as the disc sinks below the horizon (over
+    /// ±0.5°). About 1.7 (108 klux) overhead at turbidity 2.5; a low sun dim and orange.
+    pub fn sunlight(&self) -> Vec3 {
         let el = self.sun_elevation_deg;
-        let t = sun_transmittance(self.turbidity, el.to_radians())
-            / sun_transmittance(self.turbidity, std::f32::consts::FRAC_PI_2);
+        let t = sun_transmittance(self.turbidity, el.to_radians());
         let k = ((el + 0.5) / 1.0).clamp(0.0, 1.0);
-        t * (k * k * (3.0 - 2.0 * k))
+        t * (k * k * (3.0 - 2.0 * k)) * (SOLAR_ILLUMINANCE_KLUX * 1000.0 / (std::f32::consts::PI * RADIANCE_UNIT_NITS))
     }
 
     /// `lights` as this sky drives them, into `out` (cleared first): with `sun_drives_light`,
     /// the first directional light shines from the sun angles with its colour times
-    /// [`Sky::sun_color`]; otherwise a copy.
+    /// [`Sky::sunlight`]; otherwise a copy.
     pub fn drive_lights(&self, lights: &[Light], out: &mut Vec<Light>) {
         out.clear();
         out.extend_from_slice(lights);
@@ -128,39 +140,48 @@ impl Sky {
             out.iter_mut().find(|l| matches!(l, Light::Directional { .. }))
         {
             *direction = -self.to_sun();
-            *color *= self.sun_color();
+            *color *= self.sunlight();
         }
     }
 
-    /// The sun disc, or `None` when it has no direction or no size. With `gradient`, it lies along
-    /// `sun_direction` or the first directional light, lit by that light's colour (white without
-    /// one); with `preetham`, along the sun angles, coloured by [`Sky::sun_color`] and
-    /// limb-darkened, hidden once it has set.
+    /// The sun disc, or `None` when it has no direction or no size. Its radiance is the
+    /// sunlight's irradiance spread over the disc's profile, so that the disc seen in the sky (and
+    /// in a mirror) carries exactly the light that shades the scene: E / Ω with E = π × the light.
+    /// With `gradient`, it lies along `sun_direction` or the first directional light, and that
+    /// light (colour × intensity; white 1 without one) is the sunlight; with `preetham`, along the
+    /// sun angles, the sunlight is [`Sky::sunlight`], limb-darkened, hidden once it has set.
+    /// `lights` are the lights as [`Sky::drive_lights`] gives them.
     pub fn sun(&self, lights: &[Light]) -> Option<SunDisc> {
+        let cos_radius = (0.5 * self.sun_size_deg).to_radians().cos();
+        // The disc's own solid angle, 2π (1 − cos r), in f64: 1 − cos r is ~1e-5.
+        let disc = 2.0 * std::f64::consts::PI * (1.0 - (0.5 * f64::from(self.sun_size_deg)).to_radians().cos());
+        let over_disc = |sunlight: Vec3, profile_solid_angle: f32| {
+            sunlight * (std::f64::consts::PI / (disc * f64::from(profile_solid_angle))) as f32
+        };
         if self.model == SkyModel::Preetham {
-            if self.sun_size_deg <= 0.0 || self.sun_intensity <= 0.0 || self.sun_elevation_deg < -self.sun_size_deg {
+            if self.sun_size_deg <= 0.0 || self.sun_elevation_deg < -self.sun_size_deg {
                 return None;
             }
             return Some(SunDisc {
                 to_sun: self.to_sun(),
-                cos_radius: (0.5 * self.sun_size_deg).to_radians().cos(),
-                radiance: self.sun_color() * self.sun_intensity,
+                cos_radius,
+                radiance: over_disc(self.sunlight(), LIMB_DARKENED_SOLID_ANGLE),
                 profile: SunProfile::LimbDarkened,
             });
         }
         let first = lights.iter().find_map(|l| match *l {
-            Light::Directional { direction, color, .. } => Some((direction, color)),
+            Light::Directional { direction, color, intensity } => Some((direction, color * intensity)),
             Light::Point { .. } => None,
         });
         let direction = self.sun_direction.or(first.map(|f| f.0))?;
-        if self.sun_size_deg <= 0.0 || self.sun_intensity <= 0.0 {
+        if self.sun_size_deg <= 0.0 {
             return None;
         }
-        let color = first.map_or(Vec3::ONE, |f| f.1);
+        let light = first.map_or(Vec3::ONE, |f| f.1);
         Some(SunDisc {
             to_sun: -direction.normalize(),
-            cos_radius: (0.5 * self.sun_size_deg).to_radians().cos(),
-            radiance: color * self.sun_intensity,
+            cos_radius,
+            radiance: over_disc(light, SMOOTHSTEP_SOLID_ANGLE),
             profile: SunProfile::Smoothstep,
         })
     }
@@ -189,10 +210,10 @@ impl Sky {
     }
 
     /// The Preetham sky `model` (built from this sky's keys) along unit `dir`, in the renderer's
-    /// radiance: luminance times `luminance_scale`, faded for a sun below the horizon; below the
+    /// radiance (kcd/m² over the 20 kcd/m² unit), faded for a sun below the horizon; below the
     /// horizon the horizon's colour blends into `ground` as in the gradient sky.
     pub(crate) fn preetham(&self, model: &super::preetham::PreethamSky, dir: Vec3) -> Vec3 {
-        let scale = self.luminance_scale * self.night_fade();
+        let scale = SKY_LUMINANCE_TO_RADIANCE * self.night_fade();
         if dir.y >= 0.0 {
             return model.rgb(dir) * scale;
         }
@@ -250,7 +271,10 @@ mod tests {
         };
         let (high, low) = (color_at(70.0, &mut out), color_at(4.0, &mut out));
         assert!(low.x / low.z > 1.5 * (high.x / high.z), "low {low} vs high {high}");
-        assert!(high.min_element() > 0.85, "a high sun is nearly white: {high}");
+        assert!(high.min_element() > 0.7 * high.max_element(), "a high sun is nearly white: {high}");
+        // And as bright as sunlight: 127.5 klux through the air, over π × 20,000 cd/m².
+        let lux = 0.2126 * high.x + 0.7152 * high.y + 0.0722 * high.z;
+        assert!((1.4..2.0).contains(&lux), "{lux}");
         assert_eq!(color_at(-3.0, &mut out), Vec3::ZERO, "no sunlight after sunset");
         // The disc follows: warm when low, gone when set.
         let disc = sky(4.0).sun(&[]).unwrap();
@@ -277,7 +301,49 @@ mod tests {
         assert!((at(0.5 * r) - 0.92).abs() < 0.01, "{}", at(0.5 * r));
         assert!(at(0.9 * r) < at(0.5 * r));
         // The aureole: present just outside, falling with angle, gone twenty radii out.
-        assert!(at(1.5 * r) > 0.01 && at(3.0 * r) < at(1.5 * r));
+        assert!(at(1.5 * r) > 1e-4 && at(3.0 * r) < at(1.5 * r));
         assert_eq!(at(25.0 * r), 0.0);
+    }
+
+    /// The disc's radiance integrated over the sky is the sunlight's irradiance, π × the light,
+    /// with both profiles, whatever the disc's size.
+    #[test]
+    fn the_disc_carries_the_sunlight_s_irradiance() {
+        let light = [Light::Directional { direction: Vec3::new(0.3, -1.0, 0.2), color: Vec3::ONE, intensity: 1.5 }];
+        for size in [0.53f32, 1.5, 4.0] {
+            for model in [SkyModel::Gradient, SkyModel::Preetham] {
+                let sky = Sky { model, sun_size_deg: size, sun_elevation_deg: 40.0, ..Sky::default() };
+                let disc = sky.sun(&light).unwrap();
+                let want = if model == SkyModel::Preetham { sky.sunlight().y } else { 1.5 } * std::f32::consts::PI;
+                // Rings of equal width in the angle from the centre out to 25 radii, in f64.
+                let r = f64::from(0.5 * size).to_radians();
+                let side = disc.to_sun.cross(Vec3::Y).normalize();
+                let n = 200_000;
+                let step = 25.0 * r / f64::from(n);
+                let e: f64 = (0..n)
+                    .map(|i| {
+                        let a = (f64::from(i) + 0.5) * step;
+                        let d = disc.to_sun * a.cos() as f32 + side * a.sin() as f32;
+                        f64::from(disc.radiance(d).y) * 2.0 * std::f64::consts::PI * a.sin() * step
+                    })
+                    .sum();
+                assert!((e as f32 / want - 1.0).abs() < 0.02, "{model:?} {size}°: {e} vs {want}");
+            }
+        }
+    }
+
+    /// The gradient sky's defaults are the physical sky's with a 45° sun at turbidity 2.5, so a
+    /// scene that switches models keeps its brightness: the zenith, and the mean around the horizon.
+    #[test]
+    fn the_gradient_defaults_are_the_physical_sky_at_45_degrees() {
+        let gradient = Sky::default();
+        let physical = Sky { model: SkyModel::Preetham, sun_elevation_deg: 45.0, turbidity: 2.5, ..gradient };
+        let horizon = (0..360).fold(Vec3::ZERO, |h, i| {
+            let a = (i as f32).to_radians();
+            h + physical.radiance(Vec3::new(a.cos(), 0.0, a.sin())) / 360.0
+        });
+        for (got, want) in [(gradient.zenith, physical.radiance(Vec3::Y)), (gradient.horizon, horizon)] {
+            assert!(((got - want) / want).abs().max_element() < 0.01, "{got} vs {want}");
+        }
     }
 }

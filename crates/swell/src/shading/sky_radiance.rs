@@ -303,16 +303,17 @@ mod tests {
     }
 
     #[test]
-    fn the_sky_is_brighter_near_the_sun_and_the_luminance_scale_scales_it() {
+    fn the_sky_is_brighter_near_the_sun_and_in_the_renderer_s_unit() {
         let sky = preetham(30.0, 90.0, 3.0);
         let r = SkyRadiance::new(&sky);
         let lum = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
         let near = lum(r.radiance(Vec3::new(1.0, 0.62, 0.0).normalize()));
         let opposite = lum(r.radiance(Vec3::new(-1.0, 0.62, 0.0).normalize()));
         assert!(near > 2.0 * opposite, "{near} vs {opposite}");
-        let brighter = SkyRadiance::new(&Sky { luminance_scale: 0.1, ..sky });
+        // The model's kcd/m² over the 20 kcd/m² unit.
         let d = Vec3::new(0.3, 0.5, -0.4).normalize();
-        assert!((brighter.radiance(d) - 2.0 * r.radiance(d)).abs().max_element() < 1e-5);
+        let model = super::super::preetham::PreethamSky::new(3.0, sky.to_sun());
+        assert!((lum(r.radiance(d)) * 20.0 / model.yxy(d).0 as f32 - 1.0).abs() < 0.02);
         // A clear noon sky in the gradient's range: zenith and horizon between 0.05 and 1.5.
         let noon = SkyRadiance::new(&preetham(60.0, 180.0, 2.5));
         for d in [Vec3::Y, Vec3::new(0.0, 0.05, -1.0).normalize()] {

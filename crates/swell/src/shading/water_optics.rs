@@ -85,7 +85,8 @@ pub struct WaterLook<'a> {
     /// The lights' reflection through the surface's slope distribution
     /// ([`GlitterModel::CoxMunk`](crate::scene::GlitterModel::CoxMunk)): its micro-roughness also
     /// blurs the reflected sky and averages the Fresnel factor. `None` draws the material's
-    /// Phong or Blinn-Phong lobe and mirrors the sun disc in the sky instead.
+    /// Phong or Blinn-Phong lobe instead. Either way the sun disc is mirrored in the sky only
+    /// when no directional light stands for the sun.
     pub glitter: Option<SunGlitter>,
 }
 
@@ -314,12 +315,14 @@ pub fn shade_water_lanes(
     let shore = depth.lt(f32::INFINITY).any();
     let edge = if shore { edge_lanes(depth) } else { Lanes::splat(1.0) };
     // The micro-roughness below the unresolved waves blurs the sky's reflection and averages
-    // its Fresnel factor as they do; the sun then reaches the eye through the glitter, not as a
-    // disc in the mirrored sky (unless no directional light stands for it).
-    let (rough, disc_in_sky) = match &look.glitter {
-        Some(g) => (unresolved + g.micro_total(), !env.lights.iter().any(|l| matches!(l, Light::Directional { .. }))),
-        None => (unresolved, true),
+    // its Fresnel factor as they do. The sun reaches the eye through the glitter (or the lobe),
+    // not as a disc in the mirrored sky, unless no directional light stands for it: the disc
+    // carries the sunlight's whole irradiance, so mirroring both would count the sun twice.
+    let rough = match &look.glitter {
+        Some(g) => unresolved + g.micro_total(),
+        None => unresolved,
     };
+    let disc_in_sky = !env.lights.iter().any(|l| matches!(l, Light::Directional { .. }));
     let f = fresnel_over_slopes_lanes(m, cos_i, rough) * edge;
     let sky = reflected_lanes(env, look, p, n, to_eye, cos_i, rough, disc_in_sky, live);
 

@@ -543,7 +543,7 @@ mod blender {
         let mut r = crate::render::Renderer::new();
         let img = r.render_size(&world, 64, 36);
         let mut rgba = Vec::new();
-        img.encode_rgba8(1.0, None, &mut rgba);
+        img.encode_rgba8(&crate::scene::RenderSettings::default().display_encoding(), &mut rgba);
         assert!(rgba.iter().any(|&v| v != rgba[0]), "a blank image");
         let ocean = ocean(&FftOceanParams {
             blender: Some(BlenderOcean { resolution: 5, wave_scale: 1.5, ..BlenderOcean::default() }),
