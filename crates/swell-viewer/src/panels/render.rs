@@ -15,8 +15,7 @@ pub const DEFAULT_POWER_GAMMA: f32 = 2.2;
 pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
     let mut changed = false;
     fields::grid("render").show(ui, |ui| {
-        changed |=
-            fields::number(ui, "exposure (factor; compensation with EV100 or auto)", &mut render.exposure, 0.01, "");
+        changed |= fields::number(ui, "exposure (x EV100 or auto)", &mut render.exposure, 0.01, "");
         // Switched on, EV100 starts where exposure alone was, so the picture does not jump.
         let unit_ev = (RADIANCE_UNIT_NITS / 1.2).log2();
         let mut ev_changed = fields::optional_number(ui, "EV100 [-6, 24]", &mut render.ev100, unit_ev, 0.02, " EV");
@@ -24,7 +23,7 @@ pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
             // EV100 and metering exclude each other (validation refuses both).
             render.auto_exposure = false;
         }
-        if fields::flag(ui, "auto exposure (metered per frame)", &mut render.auto_exposure) {
+        if fields::flag(ui, "auto exposure (metered)", &mut render.auto_exposure) {
             if render.auto_exposure {
                 render.ev100 = None;
             }
