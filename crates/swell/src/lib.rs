@@ -33,8 +33,11 @@
 //! - **Camera**: given by `eye`, `target`, `up`, `fov_y_deg`, `near`, `far`, with OpenGL's look-at and
 //!   perspective: view space looks down −Z, clip space has z in [−w, w]. Transforms are named
 //!   `a_from_b` (`view_from_world`, `clip_from_view`).
-//! - **Images**: the top row comes first in memory; colours are linear RGB until the final gamma
-//!   (sRGB) encoding.
+//! - **Images**: the top row comes first in memory; colours are linear RGB until the final
+//!   encoding (exposure, tone curve, sRGB: [`math::DisplayEncoding`]).
+//! - **Light**: every radiance (sky, sun disc, lit surfaces, EXR pixels) is in one unit, 20,000
+//!   cd/m² of luminance ([`math::RADIANCE_UNIT_NITS`]); a light's colour × intensity is E / π in
+//!   it, E the irradiance on a surface facing the light.
 //! - **Time** is `f64` seconds so that phases stay exact over long runs; per-vertex work is `f32`.
 //! - **Exported files** follow glTF conventions (metres, +Y up, right-handed).
 //! - **Randomness** always comes from an explicit seed; the same inputs give bit-identical output on
