@@ -149,7 +149,7 @@ impl PreethamSky {
     }
 
     /// Linear sRGB radiance along unit `dir`, in kcd/m² (luminance units: times
-    /// [`SKY_LUMINANCE_TO_RADIANCE`] in the renderer's unit).
+    /// 0.05, 1000 / 20,000 cd/m², in the renderer's unit).
     pub fn rgb(&self, dir: Vec3) -> Vec3 {
         let (y, cx, cy) = self.yxy(dir);
         xyy_to_linear_srgb(cx as f32, cy as f32, y as f32)
