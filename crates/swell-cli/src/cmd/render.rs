@@ -11,7 +11,7 @@ use swell::export::{
     pending_frames, write_exr_rgb, write_gif, write_png, write_png_sequence, ExrCompression, FramePattern, FrameRange,
     MAX_FPS, MAX_GIF_FPS,
 };
-use swell::math::{DisplayEncoding, ToneCurve, RADIANCE_UNIT_NITS};
+use swell::math::{ev100_of_exposure, DisplayEncoding, ToneCurve};
 use swell::mesh::parse_obj;
 use swell::render::{parse_camera_json, parse_light_json, MeshLight, MeshRenderer, Renderer, MAX_VIEW_JSON_BYTES};
 use swell::scene::Shading;
@@ -86,7 +86,7 @@ pub fn run(a: RenderArgs) -> Result<()> {
         world.update(t)?;
         let used = renderer.render(world).encode_rgba8(&encoding, rgba);
         if encoding.auto_exposure {
-            let ev = (RADIANCE_UNIT_NITS * encoding.exposure / (1.2 * used.exposure)).log2();
+            let ev = ev100_of_exposure(used.exposure / encoding.exposure);
             metered = (metered.0.min(ev), metered.1.max(ev));
         }
         render_time += start.elapsed();
@@ -240,19 +240,21 @@ fn scene_with_flags(a: &RenderArgs, last_time: f64) -> Result<Scene> {
     if let Some(name) = &a.tone_curve {
         scene.render.tone_curve = ToneCurve::parse("--tone-curve", name)?;
     }
+    if let Some(n) = a.supersample {
+        scene.render.supersample = n;
+    }
+    // One check of the settings the flags changed; a value a flag gave is named by its flag.
     scene.render.validate("render").map_err(|e| match e {
-        Error::OutOfRange { key, value, range } if key == "render.ev100" => {
-            Error::OutOfRange { key: "--ev100".into(), value, range }
+        Error::OutOfRange { key, value, range } => {
+            let flag = match key.as_str() {
+                "render.ev100" if a.ev100.is_some() => "--ev100",
+                "render.supersample" if a.supersample.is_some() => "--supersample",
+                _ => return Error::OutOfRange { key, value, range },
+            };
+            Error::OutOfRange { key: flag.into(), value, range }
         }
         other => other,
     })?;
-    if let Some(n) = a.supersample {
-        scene.render.supersample = n;
-        scene.render.validate("render").map_err(|e| match e {
-            Error::OutOfRange { value, range, .. } => Error::OutOfRange { key: "--supersample".into(), value, range },
-            other => other,
-        })?;
-    }
     Ok(scene)
 }
 

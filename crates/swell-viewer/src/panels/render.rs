@@ -3,7 +3,7 @@
 //! `swell render` uses for this scene.
 
 use eframe::egui::{DragValue, Ui};
-use swell::math::RADIANCE_UNIT_NITS;
+use swell::math::ev100_of_exposure;
 use swell::scene::RenderSettings;
 
 use super::{fields, keys};
@@ -17,7 +17,7 @@ pub fn show(ui: &mut Ui, render: &mut RenderSettings) -> bool {
     fields::grid("render").show(ui, |ui| {
         changed |= fields::number(ui, "exposure (x EV100 or auto)", &mut render.exposure, 0.01, "");
         // Switched on, EV100 starts where exposure alone was, so the picture does not jump.
-        let unit_ev = (RADIANCE_UNIT_NITS / 1.2).log2();
+        let unit_ev = ev100_of_exposure(1.0);
         let mut ev_changed = fields::optional_number(ui, "EV100 [-6, 24]", &mut render.ev100, unit_ev, 0.02, " EV");
         if ev_changed && render.ev100.is_some() {
             // EV100 and metering exclude each other (validation refuses both).

@@ -34,11 +34,18 @@ pub fn ev100_exposure(ev100: f32) -> f32 {
     RADIANCE_UNIT_NITS / (1.2 * ev100.exp2())
 }
 
+/// The EV100 at which a camera applies the linear factor `exposure` (> 0): the inverse of
+/// [`ev100_exposure`]. `ev100_of_exposure(1.0)` is 14.02, what `exposure` alone means.
+pub fn ev100_of_exposure(exposure: f32) -> f32 {
+    (RADIANCE_UNIT_NITS / (1.2 * exposure)).log2()
+}
+
 /// The EV100 that exposes a scene of log-average luminance `2^mean_log2` renderer units to 0.18
 /// of white (`log2(L / (1.2 × 0.18))`, L in cd/m²), clamped to [`EV100_RANGE`]; a non-finite mean
 /// gives the range's middle.
 pub fn metered_ev100(mean_log2: f32) -> f32 {
-    let ev = mean_log2 + (RADIANCE_UNIT_NITS / (1.2 * METER_KEY)).log2();
+    // log2(L / (1.2 × 0.18)) = log2 L + the EV100 of the exposure 0.18.
+    let ev = mean_log2 + ev100_of_exposure(METER_KEY);
     if !ev.is_finite() {
         return 0.5 * (EV100_RANGE.0 + EV100_RANGE.1);
     }
@@ -102,6 +109,9 @@ mod tests {
     fn ev100_follows_the_meter_and_saturation_calibrations() {
         // The unit is white (factor 1) at log2(20,000 / 1.2).
         assert!((ev100_exposure((RADIANCE_UNIT_NITS / 1.2).log2()) - 1.0).abs() < 1e-5);
+        for ev in [-6.0f32, 9.0, 14.0, 24.0] {
+            assert!((ev100_of_exposure(ev100_exposure(ev)) - ev).abs() < 1e-4, "{ev}");
+        }
         // One stop more halves it.
         assert!((ev100_exposure(15.0) / ev100_exposure(14.0) - 0.5).abs() < 1e-6);
         // A scene averaging 1,000 cd/m² (0.05 units) meters log2(1000 / 0.216) = 12.18.

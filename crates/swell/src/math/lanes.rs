@@ -202,6 +202,11 @@ impl Vec3Lanes {
     pub fn dot(self, o: Vec3Lanes) -> Lanes {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
+    /// Cross product per lane (`self × o`, glam's formula).
+    #[inline(always)]
+    pub fn cross(self, o: Vec3Lanes) -> Vec3Lanes {
+        Self { x: self.y * o.z - self.z * o.y, y: self.z * o.x - self.x * o.z, z: self.x * o.y - self.y * o.x }
+    }
     /// Dot product with one vector.
     #[inline(always)]
     pub fn dot1(self, o: Vec3) -> Lanes {

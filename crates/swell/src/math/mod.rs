@@ -15,7 +15,9 @@ mod tone_curve;
 mod transform;
 
 pub use color::{linear_to_srgb, srgb_to_linear, xyy_to_linear_srgb};
-pub use display_encoding::{ev100_exposure, metered_ev100, DisplayEncoding, EV100_RANGE, RADIANCE_UNIT_NITS};
+pub use display_encoding::{
+    ev100_exposure, ev100_of_exposure, metered_ev100, DisplayEncoding, EV100_RANGE, RADIANCE_UNIT_NITS,
+};
 pub use fast_exp::{fast_exp2, fast_log2, fast_pow, FAST_EXP2_MAX_REL_ERROR, FAST_LOG2_MAX_ABS_ERROR};
 pub use fast_trig::{fast_floor, fast_sin_cos, reduce_turns, sin_cos_turns, FAST_SIN_COS_MAX_ERROR};
 pub use grid_spec::{GridSpec, MAX_GRID_CELLS};

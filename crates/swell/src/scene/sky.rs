@@ -61,7 +61,7 @@ pub struct Sky {
     pub haze_distance: f32,
     /// When true, the sun angles drive the first directional `[[light]]`: it becomes the sun,
     /// its direction the sunlight's and its colour multiplied by the sunlight the air lets
-    /// through ([`Sky::sunlight`], in the renderer's unit: about 1.7 for a high sun, less and
+    /// through ([`Sky::sunlight`], in the renderer's unit: about 1.6 for a high sun, less and
     /// warmer for a low one), with either model; its `color` and `intensity` then scale that
     /// sun (1 = the model's). Without a directional light it changes nothing. Default false.
     pub sun_drives_light: bool,

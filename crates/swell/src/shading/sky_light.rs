@@ -119,7 +119,7 @@ impl Sky {
     /// the luminous solar constant, 127.5 klux (IES Lighting Handbook; Darula et al. 2005 give
     /// 133.8), through Preetham et al.'s transmittance ([`sun_transmittance`]) per channel at
     /// `sun_elevation_deg` and `turbidity`, faded to 0 as the disc sinks below the horizon (over
-    /// ±0.5°). About 1.7 (108 klux) overhead at turbidity 2.5; a low sun dim and orange.
+    /// ±0.5°). About 1.6 (100 klux) overhead at turbidity 2.5; a low sun dim and orange.
     pub fn sunlight(&self) -> Vec3 {
         let el = self.sun_elevation_deg;
         let t = sun_transmittance(self.turbidity, el.to_radians());

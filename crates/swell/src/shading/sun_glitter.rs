@@ -152,7 +152,7 @@ impl SunGlitter {
     ) -> (Vec3Lanes, Vec3Lanes, Lanes, Lanes, Lanes) {
         let w = Vec3Lanes::splat(self.wind);
         let tx = (w - n.scale(n.dot(w))).normalize_or(Vec3::X);
-        let ty = cross(n, tx);
+        let ty = n.cross(tx);
         let norm = 1.0 / (std::f32::consts::TAU * (var_x * var_y).sqrt());
         let nv = n.dot(to_eye).max(1e-3);
         (tx, ty, norm, nv, smith_lambda(nv, var_mean))
@@ -164,12 +164,6 @@ fn disc_variance(sun: Option<&SunDisc>) -> f32 {
     // 1 − cos r = r² / 2 for small r.
     let r2 = sun.map_or(SUN_RADIUS * SUN_RADIUS, |s| 2.0 * (1.0 - s.cos_radius).max(0.0));
     (r2 / 16.0).max(1e-7)
-}
-
-/// `a × b` per lane.
-#[inline(always)]
-fn cross(a: Vec3Lanes, b: Vec3Lanes) -> Vec3Lanes {
-    Vec3Lanes { x: a.y * b.z - a.z * b.y, y: a.z * b.x - a.x * b.z, z: a.x * b.y - a.y * b.x }
 }
 
 /// Smith's Λ for Gaussian (Beckmann) slopes of variance `var` per axis seen at `cos` from the
