@@ -5,7 +5,8 @@
 //! cargo run --release -p swell --example frames -- ocean 120
 //! ```
 //! prints the median frame time (ms) and frames per second of `World::update` +
-//! `Renderer::render_size` over the given number of frames (default 60), after 5 warm-up frames.
+//! `Renderer::render_size` over the given number of frames (default 60), after 5 warm-up frames,
+//! and the median of each of the renderer's stages (`RenderStages`).
 
 use std::time::Instant;
 
@@ -20,6 +21,7 @@ fn main() -> swell::Result<()> {
     let mut world = World::new(preset(&name)?)?;
     let mut renderer = Renderer::new();
     let (mut times, mut updates) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
+    let mut stages: [Vec<f64>; 5] = Default::default();
     for k in 0..frames + 5 {
         let start = Instant::now();
         world.update(k as f64 / 30.0)?;
@@ -28,6 +30,10 @@ fn main() -> swell::Result<()> {
         if k >= 5 {
             times.push(start.elapsed().as_secs_f64() * 1e3);
             updates.push(updated);
+            let s = renderer.last_stages();
+            for (v, d) in stages.iter_mut().zip([s.terrain, s.sea_filter, s.water, s.far_field, s.sky]) {
+                v.push(d.as_secs_f64() * 1e3);
+            }
         }
     }
     let median = |v: &mut Vec<f64>| {
@@ -39,5 +45,7 @@ fn main() -> swell::Result<()> {
         "{name}: median {frame:.2} ms ({:.1} fps) over {frames} frames; World::update {update:.2} ms",
         1e3 / frame
     );
+    let [terrain, filter, water, far, sky] = stages.map(|mut v| median(&mut v));
+    println!("  stages (ms): terrain {terrain:.2}, sea filter {filter:.2}, water {water:.2}, far field {far:.2}, sky {sky:.2}");
     Ok(())
 }

@@ -27,48 +27,24 @@ const SPAN: usize = 8;
 pub fn draw(fb: &mut Framebuffer, camera: &Camera, sky: &SkyRadiance, sun: Option<&SunDisc>) {
     let (width, height) = (fb.width(), fb.height());
     let rays = SkyRays::new(camera, width as f32 / height as f32);
-    if sky.is_tabulated() {
-        let ndc_x = |x: usize| 2.0 * (x as f32 + 0.5) / width as f32 - 1.0;
-        fb.fill_background_rows(|y, colors, depth| {
-            let row = rays.row(1.0 - 2.0 * (y as f32 + 0.5) / height as f32);
-            let last = colors.len() - 1;
-            for x0 in (0..colors.len()).step_by(SPAN) {
-                let x1 = (x0 + SPAN).min(last);
-                if depth[x0..=x1].iter().all(|&d| d < 1.0) {
-                    continue;
-                }
-                let (a, b) = (sky.radiance(row.direction(ndc_x(x0))), sky.radiance(row.direction(ndc_x(x1))));
-                let step = 1.0 / (x1 - x0).max(1) as f32;
-                for x in x0..(x0 + SPAN).min(colors.len()) {
-                    if depth[x] >= 1.0 {
-                        let c = a.lerp(b, (x - x0) as f32 * step);
-                        colors[x] = match sun {
-                            Some(s) => c + s.radiance(row.direction(ndc_x(x))),
-                            None => c,
-                        };
-                    }
-                }
-            }
-        });
-        return;
-    }
-    // The gradient sky (and sun) [`LANES`] pixels at a time: the lane formulas are the scalar
-    // ones, lane by lane, and a call per pixel cost the sky pass most of its time.
+    // Both skies (and the sun) [`LANES`] pixels at a time: the lane formulas are the scalar
+    // ones, lane by lane; a call per pixel cost the sky pass most of its time (for the tabulated
+    // sky, the sun disc's direction and distance per pixel were half of the pass at `noon`).
     fb.fill_background_rows(|y, colors, depth| {
-        let row = GradientRow { rays: rays.row(1.0 - 2.0 * (y as f32 + 0.5) / height as f32), width, sky, sun };
+        let row = SkyRowFill { rays: rays.row(1.0 - 2.0 * (y as f32 + 0.5) / height as f32), width, sky, sun };
         row.fill(colors, depth);
     });
 }
 
-/// One image row of the gradient sky (and sun): its rays, the image width and what it shows.
-struct GradientRow<'a> {
+/// One image row of the sky (and sun): its rays, the image width and what it shows.
+struct SkyRowFill<'a> {
     rays: SkyRow,
     width: u32,
     sky: &'a SkyRadiance,
     sun: Option<&'a SunDisc>,
 }
 
-impl GradientRow<'_> {
+impl SkyRowFill<'_> {
     /// Writes the row's pixels left at the far plane (`depth` 1), compiled for the widest vector
     /// instructions the CPU has ([`Isa`]): the same IEEE operations lane by lane whichever, so the
     /// image does not depend on the CPU.
@@ -87,20 +63,48 @@ impl GradientRow<'_> {
     #[inline(always)]
     fn fill_lanes(&self, colors: &mut [Vec3], depth: &[f32]) {
         let Self { rays, width, sky, sun } = self;
+        let ndc = |x: usize| 2.0 * (x as f32 + 0.5) / *width as f32 - 1.0;
+        // A tabulated sky varies over degrees while a pixel is a few hundredths of one: it is
+        // looked up every `SPAN` pixels (sample j at pixel min(j SPAN, last)), many at a time,
+        // and blended linearly between (the sharp sun disc stays per pixel).
+        let last = colors.len().saturating_sub(1);
+        let samples: Vec<Vec3> = if sky.is_tabulated() && depth.iter().any(|&d| d >= 1.0) {
+            let count = last / SPAN + 2;
+            (0..count.div_ceil(LANES))
+                .flat_map(|b| {
+                    let at = Lanes::from_fn(|i| ndc(((b * LANES + i) * SPAN).min(last)));
+                    let c = sky.radiance_lanes(rays.directions(at));
+                    (0..LANES).map(move |i| c.lane(i))
+                })
+                .take(count)
+                .collect()
+        } else {
+            Vec::new()
+        };
         for x0 in (0..colors.len()).step_by(LANES) {
             let n = LANES.min(colors.len() - x0);
             if depth[x0..x0 + n].iter().all(|&d| d < 1.0) {
                 continue;
             }
-            let ndc_x = Lanes::from_fn(|i| 2.0 * ((x0 + i) as f32 + 0.5) / *width as f32 - 1.0);
-            let dir = rays.directions(ndc_x);
-            let c = match sun {
-                Some(s) => sky.radiance_lanes(dir) + s.radiance_lanes(dir),
-                None => sky.radiance_lanes(dir),
+            let dir = rays.directions(Lanes::from_fn(|i| ndc(x0 + i)));
+            let sun = match sun {
+                Some(s) => s.radiance_lanes(dir),
+                None => Vec3Lanes::splat(Vec3::ZERO),
             };
-            for (i, (color, &d)) in colors[x0..x0 + n].iter_mut().zip(&depth[x0..x0 + n]).enumerate() {
-                if d >= 1.0 {
-                    *color = c.lane(i);
+            if !sky.is_tabulated() {
+                let c = sky.radiance_lanes(dir) + sun;
+                for (i, (color, &d)) in colors[x0..x0 + n].iter_mut().zip(&depth[x0..x0 + n]).enumerate() {
+                    if d >= 1.0 {
+                        *color = c.lane(i);
+                    }
+                }
+                continue;
+            }
+            for (i, x) in (x0..x0 + n).enumerate() {
+                if depth[x] >= 1.0 {
+                    let (j, s0) = (x / SPAN, x / SPAN * SPAN);
+                    let step = 1.0 / ((s0 + SPAN).min(last) - s0).max(1) as f32;
+                    colors[x] = samples[j].lerp(samples[j + 1], (x - s0) as f32 * step) + sun.lane(i);
                 }
             }
         }
@@ -202,19 +206,24 @@ mod tests {
         assert!(lit > 0, "the sun (or its glow) is in view");
     }
 
-    /// The gradient sky's rows give the same bits whichever vector instructions fill them.
+    /// Both skies' rows give the same bits whichever vector instructions fill them.
     #[test]
     fn isa_builds_agree() {
         let camera = Camera { eye: Vec3::new(0.0, 2.0, 0.0), target: Vec3::new(0.3, 1.0, -10.0), ..Camera::default() };
-        let sky = Sky { sun_elevation_deg: 8.0, ..Sky::default() };
-        let table = SkyRadiance::new(&sky);
-        assert!(!table.is_tabulated(), "the gradient sky is the lane loop");
+        for model in [SkyModel::Gradient, SkyModel::Preetham] {
+            isa_builds_agree_for(&camera, &Sky { model, sun_elevation_deg: 8.0, ..Sky::default() });
+        }
+    }
+
+    fn isa_builds_agree_for(camera: &Camera, sky: &Sky) {
+        let table = SkyRadiance::new(sky);
+        assert_eq!(table.is_tabulated(), sky.model == SkyModel::Preetham);
         let sun = sky.sun(&[]);
-        let rays = SkyRays::new(&camera, 16.0 / 9.0);
+        let rays = SkyRays::new(camera, 16.0 / 9.0);
         // 1000 columns: whole batches and a partial one; every third pixel covered by geometry.
         let depth: Vec<f32> = (0..1000).map(|x| if x % 3 == 0 { 0.5 } else { 1.0 }).collect();
         for ndc_y in [-0.9, -0.1, 0.0, 0.05, 0.7] {
-            let row = GradientRow { rays: rays.row(ndc_y), width: 1000, sky: &table, sun: sun.as_ref() };
+            let row = SkyRowFill { rays: rays.row(ndc_y), width: 1000, sky: &table, sun: sun.as_ref() };
             let fill = |isa: Isa| {
                 let mut colors = vec![Vec3::splat(-1.0); 1000];
                 row.fill_with(isa, &mut colors, &depth);
