@@ -12,8 +12,13 @@ use crate::shading::{SkyRadiance, SunDisc};
 
 /// Clears depth to the far plane (colour is left for [`draw`]).
 pub fn clear_depth(fb: &mut Framebuffer) {
-    fb.depth.par_iter_mut().for_each(|d| *d = 1.0);
+    // Blocks filled as slices (a vectorised store loop): rayon's split down to single elements
+    // cost the clear about 1.5 % of a `noon` frame in `perf`.
+    fb.depth.par_chunks_mut(DEPTH_CLEAR_BLOCK).for_each(|block| block.fill(1.0));
 }
+
+/// Depth values per task of [`clear_depth`]: 64 KiB.
+const DEPTH_CLEAR_BLOCK: usize = 16 * 1024;
 
 /// Pixels between the sky samples of a tabulated sky along a row ([`draw`]).
 const SPAN: usize = 8;
