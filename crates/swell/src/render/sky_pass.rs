@@ -22,6 +22,7 @@ const DEPTH_CLEAR_BLOCK: usize = 16 * 1024;
 
 /// Pixels between the sky samples of a tabulated sky along a row ([`draw`]).
 const SPAN: usize = 8;
+const _: () = assert!(LANES.is_multiple_of(SPAN), "a batch of the sky pass holds whole spans");
 
 /// Fills every pixel still at the far plane with `sky` seen by `camera` (and its sun disc, if any).
 ///
@@ -105,11 +106,15 @@ impl SkyRowFill<'_> {
                 }
                 continue;
             }
-            for (i, x) in (x0..x0 + n).enumerate() {
-                if depth[x] >= 1.0 {
-                    let (j, s0) = (x / SPAN, x / SPAN * SPAN);
-                    let step = 1.0 / ((s0 + SPAN).min(last) - s0).max(1) as f32;
-                    colors[x] = samples[j].lerp(samples[j + 1], (x - s0) as f32 * step) + sun.lane(i);
+            // Span by span (a block holds whole spans: `LANES` is a multiple of `SPAN`), the
+            // blend's ends and step once per span.
+            for s0 in (x0..x0 + n).step_by(SPAN) {
+                let (a, b) = (samples[s0 / SPAN], samples[s0 / SPAN + 1]);
+                let step = 1.0 / ((s0 + SPAN).min(last) - s0).max(1) as f32;
+                for x in s0..(s0 + SPAN).min(x0 + n) {
+                    if depth[x] >= 1.0 {
+                        colors[x] = a.lerp(b, (x - s0) as f32 * step) + sun.lane(x - x0);
+                    }
                 }
             }
         }

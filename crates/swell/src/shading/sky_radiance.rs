@@ -149,7 +149,7 @@ impl SkyRadiance {
         let fx = (u * HALF + (HALF - 0.5)).max(0.0);
         let fy = (v * HALF + (HALF - 0.5)).max(0.0);
         // Cells and weights for all lanes at once (the conversions vectorise; per lane they were
-        // most of the lookup's instructions). In [0, LAST] here: through i32, one instruction.
+        // most of the lookup's instructions).
         // (Plain loops: `std::array::from_fn` is not always inlined, and then stays scalar.)
         let (bx, by) = (fx.min(LAST), fy.min(LAST));
         let (mut i, mut j) = ([0_i32; LANES], [0_i32; LANES]);

@@ -553,9 +553,9 @@ fn shade_water_run_lanes(env: &Environment, look: &WaterLook, lobe: Lobe, run: &
     for (start, out) in (0..n).step_by(crate::math::LANES).zip(out[..n].chunks_mut(crate::math::LANES)) {
         let live = out.len();
         // Lanes past the run repeat its first point of the batch and are dropped.
-        let WaterPoints { position, normal, foam, unresolved } = run.gather(start, live);
-        let normal = normal.normalize_or(Vec3::Y);
-        let c = shade_water_lanes(env, look, lobe, &WaterPoints { position, normal, foam, unresolved }, live);
+        let mut points = run.gather(start, live);
+        points.normal = points.normal.normalize_or(Vec3::Y);
+        let c = shade_water_lanes(env, look, lobe, &points, live);
         for (i, o) in out.iter_mut().enumerate() {
             *o = c.lane(i);
         }
