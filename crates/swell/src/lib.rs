@@ -66,6 +66,7 @@
 
 #![warn(missing_docs)]
 
+pub mod body;
 pub mod closed_set;
 pub mod error;
 #[cfg(feature = "export")]

@@ -2,6 +2,7 @@
 //! and the documentation lists it. The lists come from the sets' own declarations, so a member
 //! added to a set is checked here without an edit.
 
+use swell::body::BodyShape;
 use swell::closed_set::ClosedSet;
 use swell::export::{ExrCompression, NormalSpace};
 use swell::math::ToneCurve;
@@ -42,6 +43,7 @@ fn every_closed_set_round_trips_through_its_names() {
     round_trips::<SkyModel>();
     round_trips::<GlitterModel>();
     round_trips::<ToneCurve>();
+    round_trips::<BodyShape>();
 }
 
 #[test]
@@ -54,6 +56,7 @@ fn the_scene_format_documents_every_member() {
         .chain(SkyModel::NAMES)
         .chain(GlitterModel::NAMES)
         .chain(ToneCurve::NAMES)
+        .chain(BodyShape::NAMES)
         .chain(WATER_MODELS)
         .chain(TERRAIN_GENERATORS);
     for name in names {

@@ -24,6 +24,10 @@ fn section_scene(header: &str) -> Option<(String, String)> {
     if h.starts_with("`[water]`") {
         return table("water", "model = \"sines\"\n");
     }
+    if h.starts_with("`[[body]]`") {
+        let body = "shape = \"box\"\nsize = [1.0, 1.0, 1.0]\n";
+        return Some((format!("{BASE}[[body]]\n{body}"), "body".into()));
+    }
     if h.starts_with("`[water.material]`") {
         return Some((format!("{BASE}[water]\nmodel = \"sines\"\n[water.material]\n"), "water.material".into()));
     }

@@ -174,8 +174,10 @@ pub fn scene(extent_units: u32, cells: (u32, u32), added: usize) -> Scene {
             // Gouraud shading, as in the paper.
             material: WaterMaterial::default(),
             model: WaterModelSpec::Gerstner(GerstnerSpec { waves: paper_waves(added) }),
+            density: swell::body::SEA_WATER_DENSITY,
         }),
         render: RenderSettings { width: IMAGE.0, height: IMAGE.1, ..RenderSettings::default() },
+        bodies: Vec::new(),
     }
 }
 

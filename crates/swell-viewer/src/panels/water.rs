@@ -21,9 +21,9 @@ use super::{keys, water_transform, wave_set, PanelState};
 /// of steepness 0, so that direction changes nothing on screen); any other model starts from its
 /// defaults.
 pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> {
-    let (surface, material) = match water {
-        Some(w) => (w.surface, w.material.clone()),
-        None => (WaterSurface::default(), WaterMaterial::default()),
+    let (surface, material, density) = match water {
+        Some(w) => (w.surface, w.material.clone(), w.density),
+        None => (WaterSurface::default(), WaterMaterial::default(), swell::body::SEA_WATER_DENSITY),
     };
     if let Some(w) = water {
         if w.model.name() == name {
@@ -41,7 +41,7 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
                         direction: w.direction,
                     })
                     .collect();
-                return Ok(WaterSpec { surface, material, model: WaterModelSpec::Sines(SinesSpec { waves }) });
+                return Ok(WaterSpec { surface, material, model: WaterModelSpec::Sines(SinesSpec { waves }), density });
             }
             (WaterModelSpec::Sines(s), "gerstner") => {
                 let waves = s
@@ -55,7 +55,12 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
                         steepness: 0.0,
                     })
                     .collect();
-                return Ok(WaterSpec { surface, material, model: WaterModelSpec::Gerstner(GerstnerSpec { waves }) });
+                return Ok(WaterSpec {
+                    surface,
+                    material,
+                    model: WaterModelSpec::Gerstner(GerstnerSpec { waves }),
+                    density,
+                });
             }
             _ => {}
         }
@@ -68,7 +73,7 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
     }
     // Any other model: its defaults, read through the scene-file parser like a `[water]` table
     // that names only the model, the patch and the material.
-    let base = WaterSpec { surface, material, model: WaterModelSpec::Gerstner(Default::default()) };
+    let base = WaterSpec { surface, material, model: WaterModelSpec::Gerstner(Default::default()), density };
     let mut table = toml::Table::new();
     for (k, v) in base.to_table() {
         if matches!(k.as_str(), "size" | "cells" | "center" | "material") {
@@ -81,6 +86,7 @@ pub fn switch_model(water: Option<&WaterSpec>, name: &str) -> Result<WaterSpec> 
     // the new model cannot have (an unbounded sea switched to the finite spring lattice): it goes
     // back to automatic rather than refusing the switch.
     w.surface = surface;
+    w.density = density;
     if w.surface.extent.is_some_and(|e| e.validate(&w.model).is_err()) {
         w.surface.extent = None;
     }

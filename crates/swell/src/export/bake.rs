@@ -196,6 +196,8 @@ pub struct Bake {
     damaged: Vec<(u32, String)>,
     notes: Vec<String>,
     lock: BakeLock,
+    /// The floating bodies' names, in scene order; empty without bodies (no poses written).
+    body_names: Vec<String>,
 }
 
 /// The fields of one frame, captured from the world so the world can move on.
@@ -216,9 +218,13 @@ fn batch_len(threads: usize, samples: usize) -> usize {
 
 struct FrameFields {
     frame: u32,
+    /// The frame's time, s.
+    t: f64,
     disp: Vec<Vec3>,
     normal: Vec<Vec3>,
     foam: Vec<f32>,
+    /// The floating bodies' poses at the frame (empty without bodies).
+    poses: Vec<crate::body::BodyPose>,
 }
 
 impl Bake {
@@ -266,7 +272,13 @@ impl Bake {
             Some(r) => r,
             None => auto_png_range(&mesh.positions, &grid),
         };
-        let manifest = manifest(&spec.to_table(), &grid, &settings, &maps, png_range_m);
+        let mut manifest = manifest(&spec.to_table(), &grid, &settings, &maps, png_range_m);
+        let body_names: Vec<String> = world.bodies.bodies().iter().map(|b| b.name.clone()).collect();
+        if !body_names.is_empty() {
+            // The bodies decide the poses' bytes: a resume with other bodies is another bake.
+            let specs = toml::Value::try_from(&world.scene.bodies).expect("body specs serialise to TOML");
+            manifest.bodies = Some(shortest_floats(serde_json::to_value(&specs).expect("TOML values convert to JSON")));
+        }
 
         if dir.exists() && !dir.is_dir() {
             return Err(Error::invalid("--out", format!("{} exists and is not a directory", dir.display())));
@@ -296,6 +308,7 @@ impl Bake {
             damaged: vec![],
             notes,
             lock,
+            body_names,
         };
         let frames: Vec<u32> = bake.settings.shard.frames(bake.settings.frames).collect();
         if !bake.settings.resume {
@@ -380,6 +393,9 @@ impl Bake {
         if self.settings.png_bits.is_some() {
             names.extend(self.maps.iter().map(|m| file_name(*m, frame, "png")));
         }
+        if !self.body_names.is_empty() {
+            names.push(super::bake_bodies::frame_file_name(frame));
+        }
         names
     }
 
@@ -387,7 +403,7 @@ impl Bake {
     /// frame k and then its record are written. `world` must be the one given to [`Bake::prepare`].
     pub fn run(&self, world: &mut World, on_frame: &(dyn Fn(u32) + Sync)) -> Result<()> {
         if self.todo.is_empty() {
-            return Ok(());
+            return self.gather_bodies();
         }
         let n = self.map_size().0 * self.map_size().1;
         let batch = batch_len(rayon::current_num_threads(), n);
@@ -395,6 +411,8 @@ impl Bake {
             (0..batch.min(self.todo.len()))
                 .map(|_| FrameFields {
                     frame: 0,
+                    t: 0.0,
+                    poses: Vec::new(),
                     disp: vec![Vec3::ZERO; n],
                     normal: vec![Vec3::ZERO; n],
                     foam: vec![0.0; if self.maps.contains(&MapKind::Foam) { n } else { 0 }],
@@ -417,7 +435,17 @@ impl Bake {
             captured?;
             std::mem::swap(&mut ready, &mut next);
         }
-        Ok(())
+        self.gather_bodies()
+    }
+
+    /// Rewrites `bodies.json` from the poses of every frame of the bake the directory holds
+    /// ([`super::bake_bodies::gather`]); nothing without bodies.
+    fn gather_bodies(&self) -> Result<()> {
+        if self.body_names.is_empty() {
+            return Ok(());
+        }
+        let r = self.settings.frames;
+        super::bake_bodies::gather(&self.dir, r.first..=r.last, &self.body_names).map(|_| ())
     }
 
     fn capture_batch(&self, world: &mut World, frames: &[u32], out: &mut [FrameFields]) -> Result<()> {
@@ -435,6 +463,9 @@ impl Bake {
         world.advance(t)?;
         world.sample_patch(mesh)?;
         out.frame = frame;
+        out.t = t;
+        out.poses.clear();
+        out.poses.extend_from_slice(world.body_poses());
         let width = self.map_size().0;
         displacement(&mesh.positions, &self.grid, width, &mut out.disp);
         copy_rows(&mesh.normals, self.grid.verts_x(), width, &mut out.normal);
@@ -479,6 +510,11 @@ impl Bake {
                 file_record(&self.dir, &name)
             })
             .collect::<Result<Vec<_>>>()?;
+        let mut files = files;
+        if !self.body_names.is_empty() {
+            super::bake_bodies::write_frame(&self.dir, f.frame, f.t, &self.body_names, &f.poses)?;
+            files.push(file_record(&self.dir, &super::bake_bodies::frame_file_name(f.frame))?);
+        }
         let record = FrameRecord { frame: f.frame, bake_json_xxh64: self.bake_json_xxh64.clone(), files };
         write_record(&self.dir, &record)
     }
@@ -517,7 +553,7 @@ fn is_frame_file_name(name: &str) -> bool {
             .and_then(|r| r.strip_suffix(".exr").or_else(|| r.strip_suffix(".png")))
             .is_some_and(|d| d.len() >= 4 && d.bytes().all(|c| c.is_ascii_digit()))
     });
-    map || is_record_name(name)
+    map || is_record_name(name) || super::bake_bodies::is_frame_file_name(name)
 }
 
 /// Refuses `--tile` unless the water repeats over the bake's extent: its spatial period (m, if it
@@ -656,6 +692,7 @@ fn manifest(
                 max = (1u32 << bits) - 1
             ),
         }),
+        bodies: None,
     }
 }
 

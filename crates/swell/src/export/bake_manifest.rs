@@ -51,6 +51,10 @@ pub struct BakeManifest {
     pub exr_compression: ExrCompression,
     /// The PNG versions, if `--png` was given.
     pub png: Option<BakePng>,
+    /// The scene's floating bodies (`[[body]]`, as JSON), when it has any: their poses are
+    /// written per frame as `bodies_{frame:04}.json` and gathered into `bodies.json`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bodies: Option<serde_json::Value>,
 }
 
 /// The grid of a bake: map pixel (i, j) is grid vertex (i, j).

@@ -4,6 +4,7 @@ mod image_file;
 // Meshes (OBJ, glTF), float maps (EXR) and bake sequences: issue 8.
 mod array_job;
 mod bake;
+mod bake_bodies;
 // issue 37: frames verified on resume, one bake per directory, a lock naming its holder.
 mod bake_checksum;
 mod bake_frame_record;
@@ -28,6 +29,7 @@ pub use array_job::{resolve_shard, ResolvedShard, SHARD_COUNT_VAR};
 // Kept here too for callers from before it moved down to `io` (terrain writes files as well).
 pub use crate::io::write_atomically;
 pub use bake::{model_loop_period, Bake, BakeSettings, MAX_FPS, MIN_PNG_RANGE_M, PNG_RANGE_HEADROOM};
+pub use bake_bodies::{BakedBodies, BakedBody, BodyFramePose, BODIES_JSON};
 pub use bake_checksum::{xxh64, Xxh64};
 pub use bake_lock::{lock_name, BakeLock, LockHolder, MAX_LOCK_COMMAND_CHARS};
 pub use bake_manifest::{

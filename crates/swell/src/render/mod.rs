@@ -1,13 +1,14 @@
 //! Scene + settings -> framebuffer. One file per pass, drawn in order into the same z-buffer, every
 //! lit one through the one shaded-draw path ([`shaded_draw`]):
 //! [`sky_pass`] clears the depth, [`terrain_pass`] draws the terrain, [`far_land_pass`] the land
-//! beyond it to the horizon, [`reflection_pass`] draws the terrain
+//! beyond it to the horizon, [`body_pass`] the floating bodies, [`reflection_pass`] draws the terrain
 //! mirrored into its own image for the water to reflect, [`water_pass`] draws the water surface,
 //! [`sky_pass`] fills what is left with the sky, [`overlay_pass`] draws the wireframe and normals
 //! when asked for. Unbounded water (issue 17) is drawn from the camera-following rings of
 //! [`sea_lod`] by the same [`water_pass`], then [`far_field_pass`] carries the sea from the rings'
 //! edge to the horizon before the sky fills the rest.
 
+mod body_pass;
 mod far_field_pass;
 mod far_land_pass;
 mod mesh_pass;
@@ -47,6 +48,9 @@ pub struct Renderer {
     far_land_draw: shaded_draw::ShadedDraw,
     /// The water's vertex buffers.
     water_draw: shaded_draw::ShadedDraw,
+    /// The floating bodies' triangles at this frame's poses, and their vertex buffers.
+    body_meshes: body_pass::BodyMeshes,
+    body_draw: shaded_draw::ShadedDraw,
     /// The mirrored terrain the water reflects.
     reflection_scratch: reflection_pass::Scratch,
     /// The unbounded sea's rings as this image filters them (the rings are the world's).
@@ -111,6 +115,10 @@ impl Renderer {
         if let Some(terrain) = &world.terrain {
             let draws = (&mut self.terrain_draw, &mut self.far_land_draw, &mut self.reflection_scratch);
             reflection = draw_terrain(fb, &frame, world, terrain, draws);
+            watch.lap(&mut stages.terrain);
+        }
+        if !world.body_poses().is_empty() {
+            body_pass::draw(fb, &frame, world, &mut self.body_meshes, &mut self.body_draw);
             watch.lap(&mut stages.terrain);
         }
         if let Some(water) = &world.water {

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 use super::water_spec::{deserialize_at, WaterSpec};
 use super::TerrainSpec;
 use super::{Camera, Light, RenderSettings, Sky};
+use crate::body::BodySpec;
 use crate::error::{Error, Result};
 
 /// The scene-file format version this build reads and writes.
@@ -34,6 +35,8 @@ pub struct Scene {
     pub terrain: Option<TerrainSpec>,
     /// Image settings.
     pub render: RenderSettings,
+    /// Floating bodies, 0 to [`crate::body::MAX_BODIES`]; `[[body]]` in the file.
+    pub bodies: Vec<BodySpec>,
 }
 
 /// The scene's sections other than `[water]`, which needs a two-step read (model first).
@@ -50,6 +53,8 @@ struct SceneFile {
     sky: Sky,
     #[serde(default)]
     render: RenderSettings,
+    #[serde(default, rename = "body", skip_serializing_if = "Vec::is_empty")]
+    bodies: Vec<BodySpec>,
 }
 
 /// `version` when a file leaves it out: the current one.
@@ -130,6 +135,7 @@ impl Scene {
             water,
             terrain,
             render: file.render,
+            bodies: file.bodies,
         };
         scene.validate().map_err(|e| e.in_source(source))?;
         Ok(scene)
@@ -185,6 +191,7 @@ impl Scene {
             lights: self.lights.clone(),
             sky: self.sky,
             render: self.render,
+            bodies: self.bodies.clone(),
         };
         let mut table = toml::Table::try_from(&file).expect("scene sections serialise to TOML");
         if let Some(w) = &self.water {
@@ -227,6 +234,7 @@ impl Scene {
         if let Some(t) = &self.terrain {
             t.validate()?;
         }
+        crate::body::validate_bodies(&self.bodies)?;
         // Every size is in range on its own; their sum must also fit before anything is allocated.
         crate::limits::check_memory("scene (water grid + terrain + framebuffer)", self.estimate_bytes())?;
         Ok(())
@@ -245,6 +253,9 @@ impl Scene {
     /// Makes relative file paths in the scene (heightmaps, water textures, spectrum files) relative to `dir`, the
     /// directory of the scene file they were written in.
     pub fn resolve_paths(&mut self, dir: &std::path::Path) {
+        for b in &mut self.bodies {
+            b.resolve_paths(dir);
+        }
         if let Some(t) = &mut self.terrain {
             t.resolve_paths(dir);
         }

@@ -238,6 +238,9 @@ pub struct WaterSpec {
     pub material: WaterMaterial,
     /// Model and its parameters.
     pub model: WaterModelSpec,
+    /// Density of the water, kg/m³, in [`crate::body::WATER_DENSITY_RANGE`] (default
+    /// [`crate::body::SEA_WATER_DENSITY`], sea water; 1000 for fresh): what floats bodies.
+    pub density: f32,
 }
 
 /// Keys of `[water]` that belong to the patch rather than to the model.
@@ -267,6 +270,17 @@ impl WaterSpec {
                 surface.insert(key.to_string(), v);
             }
         }
+        let density = match table.remove("density") {
+            Some(toml::Value::Float(d)) => d as f32,
+            Some(toml::Value::Integer(d)) => d as f32,
+            Some(v) => {
+                return Err(Error::Parse {
+                    path: source.into(),
+                    message: format!("water.density = {v} must be a number (kg/m³)"),
+                })
+            }
+            None => crate::body::SEA_WATER_DENSITY,
+        };
         let material = match table.remove("material") {
             Some(v) => deserialize_at(v, "water.material", source)?,
             None => WaterMaterial::default(),
@@ -275,6 +289,7 @@ impl WaterSpec {
             surface: deserialize_at(surface, "water", source)?,
             material,
             model: WaterModelSpec::from_table(&model, table, source)?,
+            density,
         })
     }
 
@@ -283,6 +298,9 @@ impl WaterSpec {
         let mut t = to_table(&self.model);
         t.extend(to_table(&self.surface));
         t.insert("material".into(), toml::Value::Table(to_table(&self.material)));
+        if self.density != crate::body::SEA_WATER_DENSITY {
+            t.insert("density".into(), toml::Value::Float(f64::from(self.density)));
+        }
         t
     }
 
@@ -295,6 +313,8 @@ impl WaterSpec {
             e.validate(&self.model)?;
         }
         self.material.validate("water.material")?;
+        let (lo, hi) = crate::body::WATER_DENSITY_RANGE;
+        crate::error::check_range("water.density", self.density, lo, hi)?;
         self.model.validate()
     }
 }

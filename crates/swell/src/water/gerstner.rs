@@ -221,6 +221,11 @@ impl PointWave for Gerstner {
 }
 
 impl WaveModel for Gerstner {
+    /// Linear orbital velocity of each wave ([`super::trochoidal_sum`]).
+    fn surface_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {
+        self.sum.velocity(t, Vec2::new(x, z))
+    }
+
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
         push_wave_slopes(self.waves.iter().map(|w| (w.amplitude, w.wavelength)), out);
     }

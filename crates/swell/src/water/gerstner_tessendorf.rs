@@ -209,6 +209,11 @@ impl PointWave for GerstnerTessendorf {
 }
 
 impl WaveModel for GerstnerTessendorf {
+    /// Linear orbital velocity of each wave ([`super::trochoidal_sum`]).
+    fn surface_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {
+        self.sum.velocity(t, Vec2::new(x, z))
+    }
+
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
         push_wave_slopes(self.params.waves.iter().map(|w| (w.amplitude, w.wavelength)), out);
     }

@@ -44,5 +44,7 @@ pub use slope_spectrum::{
 pub use spring_mesh::{DropSchedule, Edges, SpringMesh, SpringMeshParams, MAX_SPRING_CELLS, MAX_STEPS_PER_ADVANCE};
 pub use steep_sines::{SteepSineWave, SteepSines, SteepSinesParams, MAX_STEEP_SINE_EXPONENT, MAX_STEEP_SINE_WAVES};
 pub use sum_of_sines::{SineWave, SinesSpec, SumOfSines, MAX_SINE_WAVES};
-pub use wave_model::{evaluate_pointwise, height_by_inversion, PointWave, SurfacePoint, WaveModel};
+pub use wave_model::{
+    evaluate_pointwise, height_by_inversion, velocity_by_difference, PointWave, SurfacePoint, WaveModel,
+};
 pub use wave_set::{wave_set, WaveSetParams};

@@ -153,6 +153,11 @@ impl PointWave for NoiseWaves {
 }
 
 impl WaveModel for NoiseWaves {
+    /// The time derivative of the displacement ([`super::velocity_by_difference`]).
+    fn surface_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {
+        super::velocity_by_difference(self, x, z, t)
+    }
+
     /// Nothing: perlin fBm has no list of waves to split at a cut-off: its octaves are shaded as sampled.
     fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
 

@@ -107,6 +107,11 @@ impl PointWave for RadialWave {
 }
 
 impl WaveModel for RadialWave {
+    /// The time derivative of the displacement ([`super::velocity_by_difference`]).
+    fn surface_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {
+        super::velocity_by_difference(self, x, z, t)
+    }
+
     /// Nothing: a finite pool seen up close: its one wave is resolved wherever it is drawn.
     fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}
 

@@ -277,6 +277,15 @@ impl ModelParams for RiverParams {
 }
 
 impl WaveModel for River {
+    /// The flow, downstream at `flow_speed` between the banks; still water outside them.
+    fn surface_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {
+        let (l, r) = self.banks(z, t);
+        if x < l || x > r {
+            return Vec3::ZERO;
+        }
+        Vec3::new(0.0, 0.0, self.params.flow_speed)
+    }
+
     /// Nothing: the river is drawn as its own patch, never as the sea's rings, so it has no far
     /// field to filter; ripples its grid cannot hold leave the mesh in `evaluate` instead.
     fn slope_components(&self, _out: &mut Vec<(f32, f32)>) {}

@@ -153,6 +153,11 @@ impl PointWave for SteepSines {
 }
 
 impl WaveModel for SteepSines {
+    /// The time derivative of the displacement ([`super::velocity_by_difference`]).
+    fn surface_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {
+        super::velocity_by_difference(self, x, z, t)
+    }
+
     /// `A ((sin S + 1) / 2)^e` is a sine of amplitude A/2 for e = 1; sharper crests (larger e)
     /// are counted as that sine, a lower bound on their slopes.
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {

@@ -136,6 +136,11 @@ impl PointWave for SumOfSines {
 }
 
 impl WaveModel for SumOfSines {
+    /// The time derivative of the displacement ([`super::velocity_by_difference`]).
+    fn surface_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {
+        super::velocity_by_difference(self, x, z, t)
+    }
+
     fn slope_components(&self, out: &mut Vec<(f32, f32)>) {
         push_wave_slopes(self.waves.iter().map(|w| (w.amplitude, w.wavelength)), out);
     }

@@ -130,6 +130,23 @@ impl TrochoidalSum {
         finish(rest, &acc)
     }
 
+    /// Linear orbital velocity (m/s) of the water at the surface above `rest` at time `t`: for
+    /// each wave of height `a sin θ`, `a ω sin θ` along its direction (forward under the crest)
+    /// and `∂η/∂t = -a ω cos θ` upward, the deep-water particle velocity of Airy theory (Dean and
+    /// Dalrymple, *Water Wave Mechanics*, §4.2). The same for Gerstner waves, whose particles
+    /// circle at that speed.
+    pub fn velocity(&self, t: f64, rest: Vec2) -> Vec3 {
+        let phases = self.phases(t);
+        let mut v = Vec3::ZERO;
+        for ((w, c), &ph) in self.waves.iter().zip(&self.coefficients).zip(phases.iter()) {
+            let (s, co) = (c.kx * rest.x + (c.kz * rest.y - ph)).sin_cos();
+            let speed = c.a * w.omega as f32;
+            let d = w.k.normalize_or_zero();
+            v += Vec3::new(d.x * speed * s, -speed * co, d.y * speed * s);
+        }
+        v
+    }
+
     /// Writes positions and normals of every vertex of `grid` at time `t` (s); rows in parallel.
     pub fn evaluate(&self, grid: &GridSpec, t: f64, positions: &mut [Vec3], normals: &mut [Vec3]) {
         let n = grid.vertex_count();

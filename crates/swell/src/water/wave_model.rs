@@ -24,6 +24,18 @@ pub trait WaveModel: Send + Sync {
     /// Models that move water horizontally invert that motion; each model documents its accuracy.
     fn height_at(&self, x: f32, z: f32, t: f64) -> f32;
 
+    /// Velocity (m/s, the model's frame) of the water at the surface above the point (x, z) at
+    /// time `t` (s): what carries and drags a floating body ([`crate::body`]).
+    ///
+    /// Wave models built of discrete waves give each wave's linear orbital velocity at the
+    /// surface (`a ω` along the wave at the crest, `∂η/∂t` vertically); the river gives its flow;
+    /// other closed-form models the time derivative of their displacement; the default, for models
+    /// that do not say (the FFT ocean, the spring mesh), is still water, `Vec3::ZERO`, so a body
+    /// on them feels their heights and slopes but no current.
+    fn surface_velocity(&self, _x: f32, _z: f32, _t: f64) -> Vec3 {
+        Vec3::ZERO
+    }
+
     /// Moves internal state to time `t` (s) before [`WaveModel::evaluate`] is called for `t`.
     ///
     /// Stateless (closed-form) models ignore it, which is the default. Time-stepped models (spring
@@ -137,6 +149,22 @@ pub fn evaluate_pointwise<W: PointWave>(
             *nrm = s.normal;
         }
     });
+}
+
+/// Half the time step (s) of [`velocity_by_difference`]'s central difference: short against any
+/// wave period (the shortest waves swell draws have periods above 0.1 s), long enough that `f32`
+/// offsets differ by many ulps.
+const VELOCITY_STEP_S: f64 = 1e-3;
+
+/// Velocity (m/s) of the surface point resting at (x, z) at time `t`: the central difference of
+/// its displacement over ±[`VELOCITY_STEP_S`], for closed-form models without an analytic
+/// velocity. The point rests at (x, z) rather than being displaced there, an error of the order of
+/// the wave steepness for models that move water sideways.
+pub fn velocity_by_difference<W: PointWave>(wave: &W, x: f32, z: f32, t: f64) -> Vec3 {
+    let rest = Vec2::new(x, z);
+    let ahead = wave.sample(&wave.frame(t + VELOCITY_STEP_S), rest).offset;
+    let behind = wave.sample(&wave.frame(t - VELOCITY_STEP_S), rest).offset;
+    (ahead - behind) / (2.0 * VELOCITY_STEP_S) as f32
 }
 
 /// Most fixed-point iterations [`height_by_inversion`] takes.

@@ -10,6 +10,7 @@ mod terrain_far_land;
 mod water_query;
 #[allow(clippy::module_inception)]
 mod world;
+mod world_environment;
 
 pub use sea_stats::{sea_stats, water_sea_stats, SeaStats};
 pub use terrain_body::TerrainBody;

@@ -1,6 +1,8 @@
 //! A scene made runnable: its models built and its meshes allocated, updated frame by frame.
 
+use super::world_environment::WorldEnvironment;
 use super::TerrainBody;
+use crate::body::{BodyPose, FloatingBodies};
 use crate::error::Result;
 use crate::math::GridSpec;
 use crate::mesh::{Clipmap, DrawnSurface, SurfaceMesh};
@@ -59,6 +61,10 @@ pub struct World {
     pub water: Option<WaterBody>,
     /// The terrain, if the scene has any (static: built once, not changed by updates).
     pub terrain: Option<TerrainBody>,
+    /// The scene's floating bodies (`[[body]]`), stepped by every update to its time.
+    pub bodies: FloatingBodies,
+    /// Every body's pose at the time of the last update, in the order of [`World::bodies`].
+    body_poses: Vec<BodyPose>,
     time: f64,
 }
 
@@ -116,7 +122,25 @@ impl World {
             }
             None => None,
         };
-        let mut world = Self { scene, water, terrain, time: f64::NAN };
+        let density = scene.water.as_ref().map_or(crate::body::SEA_WATER_DENSITY, |w| w.density);
+        let bodies = FloatingBodies::from_specs(&scene.bodies, density)?;
+        if let Some(t) = &terrain {
+            for (i, b) in bodies.bodies().iter().enumerate() {
+                let p = b.initial.position;
+                if let Some(g) = t.ground_height(p.x as f32, p.z as f32) {
+                    if p.y < f64::from(g) {
+                        return Err(crate::Error::invalid(
+                            format!("body[{i}].position"),
+                            format!(
+                                "[{}, {}, {}] starts inside the terrain, whose ground is at y = {g} m there; start it above the ground",
+                                p.x, p.y, p.z
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        let mut world = Self { scene, water, terrain, bodies, body_poses: Vec::new(), time: f64::NAN };
         world.update(0.0)?;
         Ok(world)
     }
@@ -126,7 +150,7 @@ impl World {
     /// state, and the depths the water model may take from the terrain below), everything else
     /// (camera, lights, sky, render settings) is read from the scene at draw time.
     pub fn needs_rebuild_for(&self, scene: &Scene) -> bool {
-        scene.water != self.scene.water || scene.terrain != self.scene.terrain
+        scene.water != self.scene.water || scene.terrain != self.scene.terrain || scene.bodies != self.scene.bodies
     }
 
     /// Moves every model to time `t` (s) and the drawn water surface with it, once: the rings of
@@ -151,12 +175,27 @@ impl World {
     /// Moves every model to time `t` (s) without touching the drawn surface: for bakes and
     /// exports, which sample the patch ([`World::sample_patch`]) and draw nothing. The drawn
     /// surface keeps the time of the last [`World::update`] until the next one.
+    ///
+    /// The floating bodies are stepped first, at their fixed rate up to `t`, each step with the
+    /// water model at that step's time; then the model moves to `t` and the bodies' poses at `t`
+    /// are taken ([`World::body_poses`]).
     pub fn advance(&mut self, t: f64) -> Result<()> {
+        if !self.bodies.is_empty() {
+            let mut env = WorldEnvironment { water: self.water.as_mut(), terrain: self.terrain.as_ref() };
+            self.bodies.advance(t, &mut env)?;
+        }
         if let Some(w) = &mut self.water {
             w.model.advance(t)?;
         }
+        self.body_poses = self.bodies.poses_at(t).unwrap_or_default();
         self.time = t;
         Ok(())
+    }
+
+    /// Every floating body's pose at the time of the last [`World::update`] or
+    /// [`World::advance`], in the order of the scene's `[[body]]`s.
+    pub fn body_poses(&self) -> &[BodyPose] {
+        &self.body_poses
     }
 
     /// A mesh over the water's patch ([`WaterBody::patch_grid`]), at rest: the buffer
