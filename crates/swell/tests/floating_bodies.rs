@@ -217,3 +217,38 @@ fn a_bake_writes_the_same_poses_whole_sharded_threaded_or_resumed() {
     bake(sharded.path(), (0, 11), None, true);
     assert_eq!(files(sharded.path()), reference);
 }
+
+#[test]
+fn a_body_dropped_into_a_running_world_replays_from_its_saved_scene() {
+    let mut live = world(SEA);
+    for k in 0..=90 {
+        live.update(f64::from(k) / 60.0).unwrap();
+    }
+    let mut spec = swell::body::BodySpec::new(swell::body::BodyShape::Box, &[0.6, 0.6, 0.6], glam::Vec3::new(1.0, 2.0, 3.0));
+    spec.density = Some(300.0);
+    let k = live.add_body(spec).unwrap();
+    assert_eq!(k, 3);
+    assert_eq!(live.scene.bodies[3].name, "body3");
+    assert!(live.scene.bodies[3].release_time > 1.5);
+    for k in 91..=240 {
+        live.update(f64::from(k) / 60.0).unwrap();
+    }
+    // Held until its release, then it fell onto the water and floats.
+    let dropped = live.body_poses()[3];
+    assert!(dropped.position.y < 0.5, "{}", dropped.position);
+    // The scene as saved, run from t = 0 straight to the end: the same poses, bit for bit.
+    let mut replay = World::new(Scene::from_toml(&live.scene.to_toml(), "saved").unwrap()).unwrap();
+    replay.update(4.0).unwrap();
+    assert_eq!(replay.body_poses(), live.body_poses());
+    // A body inside another's name, or with a bad key, is refused naming it.
+    let mut twin = swell::body::BodySpec::new(swell::body::BodyShape::Sphere, &[0.3], glam::Vec3::Y);
+    twin.name = "crate".into();
+    assert!(live.add_body(twin).unwrap_err().to_string().contains("body[4].name"));
+    // A push moves a body; taking it away leaves it to the water.
+    let before = live.body_poses()[0].position;
+    live.bodies.bodies_mut()[0].thrust = glam::DVec3::new(2000.0, 0.0, 0.0);
+    for k in 241..=300 {
+        live.update(f64::from(k) / 60.0).unwrap();
+    }
+    assert!(live.body_poses()[0].position.x > before.x + 0.5, "{} -> {}", before, live.body_poses()[0].position);
+}

@@ -89,6 +89,11 @@ pub struct BodySpec {
     /// Angular velocity at t = 0, rad/s, world axes.
     #[serde(default)]
     pub angular_velocity: Vec3,
+    /// Time (s, in [0, 1e6]) until which the body hangs still at its initial pose and velocity,
+    /// then falls free: a crate dropped into a running scene (the viewer's click writes the time
+    /// of the click). Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub release_time: f64,
     /// Pressure-drag coefficient of the faces the body pushes into the water (dimensionless,
     /// [0, 10]; 1 for a blunt face): each submerged face moving into the water at normal speed u
     /// feels ½ ρ C u² per m².
@@ -118,6 +123,9 @@ fn default_linear_drag() -> f32 {
 }
 fn is_default_linear_drag(v: &f32) -> bool {
     *v == default_linear_drag()
+}
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 fn default_color() -> Vec3 {
     Vec3::new(0.36, 0.22, 0.11)
@@ -151,6 +159,7 @@ impl BodySpec {
             rotation_deg: Vec3::ZERO,
             velocity: Vec3::ZERO,
             angular_velocity: Vec3::ZERO,
+            release_time: 0.0,
             drag: default_drag(),
             linear_drag: default_linear_drag(),
             friction: default_friction(),
@@ -236,6 +245,9 @@ impl BodySpec {
         }
         for (k, v) in self.angular_velocity.to_array().into_iter().enumerate() {
             check_range(&format!("{key}.angular_velocity[{k}]"), v, -100.0, 100.0)?;
+        }
+        if !(0.0..=1e6).contains(&self.release_time) {
+            return Err(Error::out_of_range(format!("{key}.release_time"), self.release_time, "[0, 1000000]"));
         }
         check_range(&format!("{key}.drag"), self.drag, 0.0, 10.0)?;
         check_range(&format!("{key}.linear_drag"), self.linear_drag, 0.0, 10_000.0)?;
@@ -326,7 +338,7 @@ impl BodySpec {
         let name = if self.name.is_empty() { format!("body{index}") } else { self.name.clone() };
         let r = self.rotation_deg.as_dvec3() * (std::f64::consts::PI / 180.0);
         let orientation = DQuat::from_euler(EulerRot::YXZ, r.x, r.y, r.z);
-        FloatingBody::new(
+        let mut body = FloatingBody::new(
             name,
             hull.translated(-com),
             super::BodyMaterial {
@@ -343,7 +355,9 @@ impl BodySpec {
                 angular_velocity: self.angular_velocity.as_dvec3(),
             },
             key,
-        )
+        )?;
+        body.release_time = self.release_time;
+        Ok(body)
     }
 }
 

@@ -108,6 +108,24 @@ impl FloatingBodies {
         (t * f64::from(BODY_STEP_HZ) + 1e-7).floor().max(0.0) as u64
     }
 
+    /// The bodies, mutable: for a push ([`FloatingBody::thrust`]); a change to a body's state or
+    /// mass is the caller's to make consistent.
+    pub fn bodies_mut(&mut self) -> &mut [FloatingBody] {
+        &mut self.bodies
+    }
+
+    /// Adds `body` (checked like [`FloatingBodies::new`]'s, `key` naming it) after the others; it
+    /// joins at the next step. Give it a release time after the current step's time
+    /// ([`FloatingBody::release_time`]) for a run from t = 0 to move it exactly as this one will.
+    pub fn push(&mut self, body: FloatingBody) -> Result<()> {
+        let mut one = Self::new(vec![body], self.water_density as f32)?;
+        let mut body = one.bodies.pop().expect("one body");
+        // Held until the next step: the current step's loads are evaluated already.
+        body.release_time = body.release_time.max(Self::step_time(self.steps + 1));
+        self.bodies.push(body);
+        Ok(())
+    }
+
     /// Back to t = 0: every body at its initial state.
     pub fn reset(&mut self) {
         for b in &mut self.bodies {
@@ -146,7 +164,9 @@ impl FloatingBodies {
             if self.steps >= target {
                 return Ok(());
             }
-            let next = self.bodies.iter().map(|b| b.integrated(dt)).collect::<Vec<_>>();
+            let now = Self::step_time(self.steps);
+            let next =
+                self.bodies.iter().map(|b| if b.held_at(now) { b.state } else { b.integrated(dt) }).collect::<Vec<_>>();
             if let Some((b, _)) = self.bodies.iter().zip(&next).find(|(_, s)| !state_is_finite(s)) {
                 let name = b.name.clone();
                 self.reset();
@@ -173,11 +193,12 @@ impl FloatingBodies {
         if !self.loaded || !(-1e-6..1.0 / f64::from(BODY_STEP_HZ) + 1e-6).contains(&dt) {
             return None;
         }
+        let now = Self::step_time(self.steps);
         Some(
             self.bodies
                 .iter()
                 .map(|b| {
-                    let s = if dt > 0.0 { b.integrated(dt) } else { b.state };
+                    let s = if dt > 0.0 && !b.held_at(now) { b.integrated(dt) } else { b.state };
                     BodyPose { position: s.position, rotation: s.orientation }
                 })
                 .collect(),

@@ -75,6 +75,13 @@ pub struct FloatingBody {
     pub initial: BodyState,
     /// State at the bodies' current step.
     pub state: BodyState,
+    /// Time (s) before which the body is held still at its initial state (not moved by any
+    /// force): a body dropped into a running scene (`[[body]] release_time`).
+    pub release_time: f64,
+    /// A force (N, world) applied at the centre of mass on top of the water's, the ground's and
+    /// gravity's: a user pushing the body (the viewer's keys). Not part of the scene, so not
+    /// deterministic across runs; zero by default.
+    pub thrust: DVec3,
     /// Loads at the current state, once evaluated.
     pub(super) load: Load,
     /// What the last evaluation found.
@@ -106,6 +113,8 @@ impl FloatingBody {
             inverse_inertia,
             initial,
             state: initial,
+            release_time: 0.0,
+            thrust: DVec3::ZERO,
             load: Load::default(),
             report: LoadReport::default(),
         })
@@ -120,14 +129,24 @@ impl FloatingBody {
     /// ground's contacts, with the environment at time `t` (s); `water_density` kg/m³, `dt` the
     /// step the loads will act over (s).
     pub(super) fn evaluate<E: BodyEnvironment + ?Sized>(&mut self, env: &E, t: f64, water_density: f64, dt: f64) {
+        if self.held_at(t) {
+            self.load = Load::default();
+            self.report = LoadReport::default();
+            return;
+        }
         let g = f64::from(crate::GRAVITY);
         let mut load = Load { force: DVec3::new(0.0, -g * self.material.mass, 0.0), torque: DVec3::ZERO };
         let water = super::water_forces::water_load(self, env, t, water_density, dt);
         let ground = super::ground_contact::ground_load(self, env, dt);
-        load.force += water.0.force + ground.0.force;
+        load.force += water.0.force + ground.0.force + self.thrust;
         load.torque += water.0.torque + ground.0.torque;
         self.report = LoadReport { submerged_volume: water.1, ground_contacts: ground.1 };
         self.load = load;
+    }
+
+    /// Whether the body is still held at time `t` (s): before its release time.
+    pub fn held_at(&self, t: f64) -> bool {
+        t < self.release_time
     }
 
     /// The inverse inertia tensor in world axes for `orientation`.

@@ -53,6 +53,22 @@ fn check_finite_mesh(positions: &[glam::Vec3], normals: &[glam::Vec3], t: f64) -
     }
 }
 
+/// Refuses body `i` if its centre of mass starts below the terrain's ground.
+fn check_above_ground(terrain: Option<&TerrainBody>, body: &crate::body::FloatingBody, i: usize) -> Result<()> {
+    let p = body.initial.position;
+    let Some(g) = terrain.and_then(|t| t.ground_height(p.x as f32, p.z as f32)) else { return Ok(()) };
+    if p.y >= f64::from(g) {
+        return Ok(());
+    }
+    Err(crate::Error::invalid(
+        format!("body[{i}].position"),
+        format!(
+            "[{}, {}, {}] starts inside the terrain, whose ground is at y = {g} m there; start it above the ground",
+            p.x, p.y, p.z
+        ),
+    ))
+}
+
 /// A [`Scene`] with its models built; [`World::update`] moves it to a time.
 pub struct World {
     /// The scene it was built from.
@@ -124,21 +140,8 @@ impl World {
         };
         let density = scene.water.as_ref().map_or(crate::body::SEA_WATER_DENSITY, |w| w.density);
         let bodies = FloatingBodies::from_specs(&scene.bodies, density)?;
-        if let Some(t) = &terrain {
-            for (i, b) in bodies.bodies().iter().enumerate() {
-                let p = b.initial.position;
-                if let Some(g) = t.ground_height(p.x as f32, p.z as f32) {
-                    if p.y < f64::from(g) {
-                        return Err(crate::Error::invalid(
-                            format!("body[{i}].position"),
-                            format!(
-                                "[{}, {}, {}] starts inside the terrain, whose ground is at y = {g} m there; start it above the ground",
-                                p.x, p.y, p.z
-                            ),
-                        ));
-                    }
-                }
-            }
+        for (i, b) in bodies.bodies().iter().enumerate() {
+            check_above_ground(terrain.as_ref(), b, i)?;
         }
         let mut world = Self { scene, water, terrain, bodies, body_poses: Vec::new(), time: f64::NAN };
         world.update(0.0)?;
@@ -190,6 +193,29 @@ impl World {
         self.body_poses = self.bodies.poses_at(t).unwrap_or_default();
         self.time = t;
         Ok(())
+    }
+
+    /// Adds a floating body to the running world and to its scene (`[[body]]`), as the viewer's
+    /// click drops a crate: its `release_time` becomes at least the next body step's time, so
+    /// the scene saved afterwards replays the drop exactly; an empty name becomes `body<k>`.
+    /// Returns the body's index. Refused like a scene's body (naming `body[k]`), and when it
+    /// starts inside the terrain.
+    pub fn add_body(&mut self, mut spec: crate::body::BodySpec) -> Result<usize> {
+        let k = self.scene.bodies.len();
+        let next = FloatingBodies::step_time(self.bodies.steps() + 1);
+        spec.release_time = spec.release_time.max(next);
+        if spec.name.is_empty() {
+            let taken = |n: &str| self.scene.bodies.iter().any(|b| b.name == n);
+            spec.name = (k..).map(|i| format!("body{i}")).find(|n| !taken(n)).expect("a free name");
+        }
+        let mut all = self.scene.bodies.clone();
+        all.push(spec.clone());
+        crate::body::validate_bodies(&all)?;
+        let body = spec.build(k, &format!("body[{k}]"))?;
+        check_above_ground(self.terrain.as_ref(), &body, k)?;
+        self.bodies.push(body)?;
+        self.scene.bodies.push(spec);
+        Ok(k)
     }
 
     /// Every floating body's pose at the time of the last [`World::update`] or
