@@ -2,7 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use swell::export::{world_meshes, write_glb, write_gltf, write_obj, FrameRange, MAX_FPS};
+use swell::export::{
+    body_meshes, world_meshes, write_glb, write_glb_animated, write_gltf, write_gltf_animated, write_obj, FrameRange,
+    NodeAnimation, NodeTrack, MAX_FPS,
+};
 use swell::world::World;
 use swell::{Error, Result};
 
@@ -43,6 +46,8 @@ pub fn run(a: ExportArgs) -> Result<()> {
             World::advance,
         )?;
         let mut patch = world.new_patch_mesh();
+        // The floating bodies' poses at every frame written, for their animation.
+        let mut poses: Vec<(f32, Vec<swell::body::BodyPose>)> = Vec::new();
         let mut write = |path: &Path, t: f64| -> Result<()> {
             // Exports write the water's finite patch, whatever the scene draws: the models are
             // moved and the patch sampled, and no drawn surface is displaced.
@@ -50,7 +55,11 @@ pub fn run(a: ExportArgs) -> Result<()> {
             if let Some(p) = &mut patch {
                 world.sample_patch(p)?;
             }
-            let meshes = world_meshes(&world, patch.as_ref());
+            poses.push((t as f32, world.body_poses().to_vec()));
+            // The bodies placed at their poses, after the water and the terrain.
+            let bodies = body_meshes(&world, true);
+            let mut meshes = world_meshes(&world, patch.as_ref());
+            meshes.extend(bodies.iter().map(|b| b.named()));
             let camera = &world.scene.camera;
             match format {
                 Format::Obj => write_obj(path, &meshes),
@@ -84,10 +93,54 @@ pub fn run(a: ExportArgs) -> Result<()> {
                     frame_path(&a.out, range.first).display(),
                     frame_path(&a.out, range.last).display()
                 );
+                if !world.bodies.is_empty() && !matches!(format, Format::Obj) {
+                    let path = bodies_path(&a.out);
+                    write_body_animation(&path, &world, &poses, format, aspect)?;
+                    eprintln!("wrote {} (the bodies' motion over the frames)", path.display());
+                }
             }
         }
         Ok(())
     })
+}
+
+/// The file of the bodies' animation beside an export to `out` = `DIR/STEM.EXT`:
+/// `DIR/STEM_bodies.EXT`.
+fn bodies_path(out: &Path) -> PathBuf {
+    let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = match out.extension() {
+        Some(ext) => format!("{stem}_bodies.{}", ext.to_string_lossy()),
+        None => format!("{stem}_bodies"),
+    };
+    out.with_file_name(name)
+}
+
+/// Writes the bodies in their own frames with one glTF animation, "bodies", moving each by its
+/// pose at every exported frame (`poses`: time and the poses in scene order).
+fn write_body_animation(
+    path: &Path,
+    world: &World,
+    poses: &[(f32, Vec<swell::body::BodyPose>)],
+    format: Format,
+    aspect: f32,
+) -> Result<()> {
+    let meshes = body_meshes(world, false);
+    let named: Vec<_> = meshes.iter().map(|m| m.named()).collect();
+    let times: Vec<f32> = poses.iter().map(|(t, _)| *t).collect();
+    let samples: Vec<(Vec<glam::Vec3>, Vec<glam::Quat>)> = (0..meshes.len())
+        .map(|k| poses.iter().map(|(_, p)| (p[k].position.as_vec3(), p[k].rotation.as_quat())).unzip())
+        .collect();
+    let tracks: Vec<NodeTrack> = samples
+        .iter()
+        .enumerate()
+        .map(|(mesh, (translations, rotations))| NodeTrack { mesh, translations, rotations })
+        .collect();
+    let animation = NodeAnimation { name: "bodies", times: &times, tracks: &tracks };
+    let camera = &world.scene.camera;
+    match format {
+        Format::Gltf => write_gltf_animated(path, &named, camera, aspect, Some(&animation)),
+        _ => write_glb_animated(path, &named, camera, aspect, Some(&animation)),
+    }
 }
 
 /// Frame `k` of an export to `out` = `DIR/STEM.EXT` goes to `DIR/STEM_kkkk.EXT` (at least four

@@ -159,6 +159,12 @@ impl FloatingBodies {
                 let env = &*env;
                 let rho = self.water_density;
                 self.bodies.par_iter_mut().for_each(|b| b.evaluate(env, ts, rho, dt));
+                let contacts = super::body_contact::contact_loads(&self.bodies, dt);
+                for (b, c) in self.bodies.iter_mut().zip(contacts) {
+                    if !b.held_at(ts) {
+                        b.add_load(c);
+                    }
+                }
                 self.loaded = true;
             }
             if self.steps >= target {

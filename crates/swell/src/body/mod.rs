@@ -11,6 +11,7 @@
 //! [`FloatingBody`] -> per step, [`water_forces`] and [`ground_contact`] loads -> the integrated
 //! [`BodyState`] -> [`BodyPose`] for renderers and files.
 
+pub mod body_contact;
 mod body_environment;
 mod body_spec;
 mod floating_bodies;

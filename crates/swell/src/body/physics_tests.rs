@@ -276,3 +276,28 @@ fn bad_bodies_are_refused_naming_the_key() {
     let mut b = bodies(&three_bodies());
     assert!(b.advance(f64::NAN, &mut StillWater).is_err());
 }
+
+#[test]
+fn two_crates_meeting_on_the_water_do_not_pass_through_each_other() {
+    // Flat (stable) crates 1 m wide, 2 m apart, sailing at each other at 1 m/s each.
+    let mut a = boxed([1.0, 0.4, 1.0], 500.0, 0.0);
+    a.position.x = -1.0;
+    a.velocity.x = 1.0;
+    a.drag = 0.0;
+    let mut b = boxed([1.0, 0.4, 1.0], 500.0, 0.0);
+    b.position.x = 1.0;
+    b.velocity.x = -1.0;
+    b.drag = 0.0;
+    let mut both = bodies(&[a, b]);
+    let mut closest = f64::MAX;
+    for k in 0..=600 {
+        both.advance(FloatingBodies::step_time(k), &mut StillWater).unwrap();
+        let (pa, pb) = (both.bodies()[0].state.position, both.bodies()[1].state.position);
+        closest = closest.min(pb.x - pa.x);
+    }
+    // They met (without contacts they would cross) and parted again no deeper than a few
+    // centimetres into each other.
+    assert!(closest > 0.9, "centres came within {closest} m (1 m wide crates)");
+    let (pa, pb) = (both.bodies()[0].state.position, both.bodies()[1].state.position);
+    assert!(pb.x > pa.x + 0.95, "{pa} {pb}");
+}

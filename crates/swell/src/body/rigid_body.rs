@@ -88,6 +88,8 @@ pub struct FloatingBody {
     pub report: LoadReport,
     /// Per-vertex scratch reused every step (no allocation after the first).
     pub(super) corners: Vec<super::water_forces::Corner>,
+    /// The hull's face planes, for contacts with other bodies.
+    pub(super) planes: super::body_contact::FacePlanes,
 }
 
 impl FloatingBody {
@@ -108,6 +110,7 @@ impl FloatingBody {
         Ok(Self {
             name,
             corners: Vec::with_capacity(hull.positions.len()),
+            planes: super::body_contact::FacePlanes::of(&hull),
             hull,
             material,
             inverse_inertia,
@@ -142,6 +145,12 @@ impl FloatingBody {
         load.torque += water.0.torque + ground.0.torque;
         self.report = LoadReport { submerged_volume: water.1, ground_contacts: ground.1 };
         self.load = load;
+    }
+
+    /// Adds `extra` to the load of the current state (another body's contact).
+    pub(super) fn add_load(&mut self, extra: Load) {
+        self.load.force += extra.force;
+        self.load.torque += extra.torque;
     }
 
     /// Whether the body is still held at time `t` (s): before its release time.

@@ -9,11 +9,14 @@
 //!
 //! Layout: one buffer; per mesh four tightly packed buffer views (positions, normals, uv as `f32`,
 //! indices as `u32`), one accessor each, one node each, one material each (its base colour); then a
-//! node named `camera` holding the scene's perspective camera.
+//! node named `camera` holding the scene's perspective camera. With a [`NodeAnimation`] (the
+//! floating bodies' motion), its tracks move mesh nodes: one time accessor shared by every
+//! sampler, a translation and a rotation accessor per node, LINEAR samplers (glTF 2.0 section 3.11
+//! "Animations": rotations interpolate by slerp).
 
 use std::path::Path;
 
-use glam::{Vec2, Vec3};
+use glam::{Quat, Vec2, Vec3};
 use serde_json::{json, Value};
 
 use super::{write_atomically, NamedMesh};
@@ -38,14 +41,48 @@ const GLB_JSON: u32 = 0x4E4F_534A;
 /// GLB chunk type of the binary chunk ("BIN\0").
 const GLB_BIN: u32 = 0x004E_4942;
 
+/// The motion of some mesh nodes, sampled at shared times: what `swell export --frames` writes
+/// for the floating bodies (their meshes in their own frame, moved by their poses).
+#[derive(Clone, Copy, Debug)]
+pub struct NodeAnimation<'a> {
+    /// The animation's name.
+    pub name: &'a str,
+    /// Sample times, s, increasing (at least one).
+    pub times: &'a [f32],
+    /// One track per animated mesh.
+    pub tracks: &'a [NodeTrack<'a>],
+}
+
+/// One mesh node's samples: its translation (m) and rotation (unit quaternion) at each time.
+#[derive(Clone, Copy, Debug)]
+pub struct NodeTrack<'a> {
+    /// Index of the mesh (in the meshes written) whose node moves.
+    pub mesh: usize,
+    /// Translation at each time, m.
+    pub translations: &'a [Vec3],
+    /// Rotation at each time.
+    pub rotations: &'a [Quat],
+}
+
 /// Writes `meshes` and `camera` (for images of `aspect` = width / height) as `path` (`.gltf`) plus
 /// its buffer `path` with extension `.bin`, both atomically, the buffer first.
 pub fn write_gltf(path: &Path, meshes: &[NamedMesh], camera: &Camera, aspect: f32) -> Result<()> {
+    write_gltf_animated(path, meshes, camera, aspect, None)
+}
+
+/// [`write_gltf`] with an optional node animation.
+pub fn write_gltf_animated(
+    path: &Path,
+    meshes: &[NamedMesh],
+    camera: &Camera,
+    aspect: f32,
+    animation: Option<&NodeAnimation>,
+) -> Result<()> {
     let bin_path = path.with_extension("bin");
     let bin_name = bin_path.file_name().and_then(|n| n.to_str()).ok_or_else(|| {
         Error::invalid("--out", format!("{} needs a UTF-8 file name for its .bin buffer", path.display()))
     })?;
-    let (doc, bin) = gltf_document(meshes, camera, aspect, Some(&uri_escape(bin_name)))?;
+    let (doc, bin) = gltf_document_animated(meshes, camera, aspect, Some(&uri_escape(bin_name)), animation)?;
     write_atomically(&bin_path, |out| out.write_all(&bin).map_err(|e| Error::io(&bin_path, e)))?;
     let text = serde_json::to_vec_pretty(&doc).expect("a JSON value always serialises");
     write_atomically(path, |out| out.write_all(&text).map_err(|e| Error::io(path, e)))
@@ -53,7 +90,18 @@ pub fn write_gltf(path: &Path, meshes: &[NamedMesh], camera: &Camera, aspect: f3
 
 /// Writes `meshes` and `camera` as one binary glTF (`.glb`) file, atomically.
 pub fn write_glb(path: &Path, meshes: &[NamedMesh], camera: &Camera, aspect: f32) -> Result<()> {
-    let (doc, bin) = gltf_document(meshes, camera, aspect, None)?;
+    write_glb_animated(path, meshes, camera, aspect, None)
+}
+
+/// [`write_glb`] with an optional node animation.
+pub fn write_glb_animated(
+    path: &Path,
+    meshes: &[NamedMesh],
+    camera: &Camera,
+    aspect: f32,
+    animation: Option<&NodeAnimation>,
+) -> Result<()> {
+    let (doc, bin) = gltf_document_animated(meshes, camera, aspect, None, animation)?;
     let mut json = serde_json::to_vec(&doc).expect("a JSON value always serialises");
     // Chunks are 4-byte aligned: JSON padded with spaces, binary with zeros (GLB spec 4.4.3).
     json.resize(json.len().next_multiple_of(4), b' ');
@@ -84,6 +132,21 @@ pub fn gltf_document(
     aspect: f32,
     buffer_uri: Option<&str>,
 ) -> Result<(Value, Vec<u8>)> {
+    gltf_document_animated(meshes, camera, aspect, buffer_uri, None)
+}
+
+/// [`gltf_document`] with an optional node animation, checked first: tracks naming meshes that
+/// exist, as many samples as times, finite values, increasing times.
+pub fn gltf_document_animated(
+    meshes: &[NamedMesh],
+    camera: &Camera,
+    aspect: f32,
+    buffer_uri: Option<&str>,
+    animation: Option<&NodeAnimation>,
+) -> Result<(Value, Vec<u8>)> {
+    if let Some(a) = animation {
+        check_animation(a, meshes.len())?;
+    }
     let mut bin = Vec::new();
     let (mut views, mut accessors, mut gltf_meshes, mut nodes, mut materials) =
         (vec![], vec![], vec![], vec![], vec![]);
@@ -120,6 +183,45 @@ pub fn gltf_document(
         }));
         nodes.push(json!({"name": m.name, "mesh": k}));
     }
+    let mut animations = Vec::new();
+    if let Some(a) = animation {
+        // Animation data: buffer views without a target (they are not vertex data).
+        let mut data = |bytes: Vec<u8>, count: usize, kind: &str| {
+            views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len()}));
+            bin.extend_from_slice(&bytes);
+            accessors
+                .push(json!({"bufferView": views.len() - 1, "componentType": FLOAT, "count": count, "type": kind}));
+            accessors.len() - 1
+        };
+        let n = a.times.len();
+        let input = data(a.times.iter().flat_map(|t| t.to_le_bytes()).collect(), n, "SCALAR");
+        let outputs: Vec<(usize, usize)> = a
+            .tracks
+            .iter()
+            .map(|tr| {
+                let t = data(vec3_bytes(tr.translations), n, "VEC3");
+                let r = data(
+                    tr.rotations.iter().flat_map(|q| q.to_array()).flat_map(f32::to_le_bytes).collect(),
+                    n,
+                    "VEC4",
+                );
+                (t, r)
+            })
+            .collect();
+        accessors[input]["min"] = json!([a.times[0]]);
+        accessors[input]["max"] = json!([a.times[n - 1]]);
+        let (mut samplers, mut channels) = (vec![], vec![]);
+        for (tr, &(t, r)) in a.tracks.iter().zip(&outputs) {
+            for (output, path) in [(t, "translation"), (r, "rotation")] {
+                samplers.push(json!({"input": input, "output": output, "interpolation": "LINEAR"}));
+                channels.push(json!({"sampler": samplers.len() - 1, "target": {"node": tr.mesh, "path": path}}));
+            }
+            // The node rests at the first sample, for viewers that do not play animations.
+            nodes[tr.mesh]["translation"] = json!(tr.translations[0].to_array());
+            nodes[tr.mesh]["rotation"] = json!(tr.rotations[0].to_array());
+        }
+        animations.push(json!({"name": a.name, "samplers": samplers, "channels": channels}));
+    }
     // glTF cameras look down their node's -Z with +Y up, exactly OpenGL's view space, so the node's
     // transform is the inverse of the look-at (world_from_view).
     let (_, rotation, translation) = camera.view_from_world().inverse().to_scale_rotation_translation();
@@ -147,7 +249,32 @@ pub fn gltf_document(
         doc["bufferViews"] = json!(views);
         doc["buffers"] = json!([buffer]);
     }
+    if !animations.is_empty() {
+        doc["animations"] = json!(animations);
+    }
     Ok((doc, bin))
+}
+
+/// Refuses an animation glTF cannot hold: no times, times not increasing or not finite, a track
+/// naming no mesh, a track with other than one sample per time, or a non-finite sample.
+fn check_animation(a: &NodeAnimation, meshes: usize) -> Result<()> {
+    let key = format!("animation {}", a.name);
+    let increasing = a.times.windows(2).all(|w| w[1] > w[0]);
+    if a.times.is_empty() || !increasing || !a.times.iter().all(|t| t.is_finite()) {
+        return Err(Error::invalid(key, "needs one or more finite, increasing times"));
+    }
+    for tr in a.tracks {
+        if tr.mesh >= meshes || tr.translations.len() != a.times.len() || tr.rotations.len() != a.times.len() {
+            return Err(Error::invalid(
+                &key,
+                format!("track of mesh {}: one translation and rotation per time", tr.mesh),
+            ));
+        }
+        if !tr.translations.iter().all(|v| v.is_finite()) || !tr.rotations.iter().all(|q| q.is_finite()) {
+            return Err(Error::invalid(&key, format!("track of mesh {}: a non-finite sample", tr.mesh)));
+        }
+    }
+    Ok(())
 }
 
 /// Refuses meshes glTF cannot hold or that carry NaN.

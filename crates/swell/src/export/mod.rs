@@ -5,6 +5,7 @@ mod image_file;
 mod array_job;
 mod bake;
 mod bake_bodies;
+mod body_meshes;
 // issue 37: frames verified on resume, one bake per directory, a lock naming its holder.
 mod bake_checksum;
 mod bake_frame_record;
@@ -35,9 +36,13 @@ pub use bake_lock::{lock_name, BakeLock, LockHolder, MAX_LOCK_COMMAND_CHARS};
 pub use bake_manifest::{
     AxisConversion, BakeAxes, BakeFoam, BakeGrid, BakeManifest, BakeMap, BakePng, BakeUnits, BAKE_MANIFEST_VERSION,
 };
+pub use body_meshes::{body_meshes, BodyMesh};
 pub use frame_pattern::{FramePattern, MAX_PATTERN_WIDTH};
 pub use frame_range::{FrameRange, Shard, MAX_FRAME, MAX_SHARDS};
-pub use gltf::{gltf_document, write_glb, write_gltf};
+pub use gltf::{
+    gltf_document, gltf_document_animated, write_glb, write_glb_animated, write_gltf, write_gltf_animated,
+    NodeAnimation, NodeTrack,
+};
 pub use heightmap_exr::write_heightmap_exr;
 pub use image_file::{
     gif_delay_cs, gif_frame, write_gif, write_png, write_png_map, GIF_MAX_DITHER_LEVELS, MAX_GIF_FPS,

@@ -124,6 +124,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("../../presets/ocean.toml"),
     },
     Preset {
+        name: "flotsam",
+        description: "100 crates adrift on the spectral (FFT) ocean: floating bodies on the water as drawn",
+        toml: include_str!("../../presets/flotsam.toml"),
+    },
+    Preset {
         name: "ocean-blender",
         description: "FFT ocean given by Blender's Ocean modifier keys ([water.blender]): aligned Phillips sea",
         toml: include_str!("../../presets/ocean-blender.toml"),
