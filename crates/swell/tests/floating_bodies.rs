@@ -224,7 +224,8 @@ fn a_body_dropped_into_a_running_world_replays_from_its_saved_scene() {
     for k in 0..=90 {
         live.update(f64::from(k) / 60.0).unwrap();
     }
-    let mut spec = swell::body::BodySpec::new(swell::body::BodyShape::Box, &[0.6, 0.6, 0.6], glam::Vec3::new(1.0, 2.0, 3.0));
+    let mut spec =
+        swell::body::BodySpec::new(swell::body::BodyShape::Box, &[0.6, 0.6, 0.6], glam::Vec3::new(1.0, 2.0, 3.0));
     spec.density = Some(300.0);
     let k = live.add_body(spec).unwrap();
     assert_eq!(k, 3);

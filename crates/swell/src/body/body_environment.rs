@@ -23,6 +23,13 @@ pub trait BodyEnvironment: Sync {
     /// no water (beyond a finite pool, on a river's banks).
     fn water_height(&self, x: f32, z: f32, t: f64) -> Option<f32>;
 
+    /// [`BodyEnvironment::water_height`] given `rest`, the answer's rest point in the water
+    /// model's frame for the same hull vertex at the step before (NaN at first), which it updates:
+    /// see [`WaveModel::height_near`]. The default ignores it.
+    fn water_height_near(&self, x: f32, z: f32, t: f64, _rest: &mut glam::Vec2) -> Option<f32> {
+        self.water_height(x, z, t)
+    }
+
     /// Velocity (m/s, world) of the water at the surface above world (x, z) at time `t` (s).
     fn water_velocity(&self, x: f32, z: f32, t: f64) -> Vec3;
 
@@ -63,6 +70,10 @@ impl BodyEnvironment for ModelWater<'_> {
 
     fn water_height(&self, x: f32, z: f32, t: f64) -> Option<f32> {
         Some(self.model.height_at(x, z, t))
+    }
+
+    fn water_height_near(&self, x: f32, z: f32, t: f64, rest: &mut glam::Vec2) -> Option<f32> {
+        Some(self.model.height_near(x, z, t, rest))
     }
 
     fn water_velocity(&self, x: f32, z: f32, t: f64) -> Vec3 {

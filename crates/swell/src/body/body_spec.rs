@@ -24,8 +24,9 @@ crate::closed_set! {
     }
 }
 
-/// Most bodies a scene may have.
-pub const MAX_BODIES: usize = 1024;
+/// Most bodies a scene may have: 256 bodies of every key take about 4,600 list items, well within
+/// the scene text's [`crate::limits::MAX_LIST_ITEMS`], so a saved scene always loads again.
+pub const MAX_BODIES: usize = 256;
 
 /// Smallest and largest size (m) of any extent of a body: below a few centimetres the 120 Hz step
 /// cannot follow the body's bobbing; above a kilometre it is no longer a body on the water.

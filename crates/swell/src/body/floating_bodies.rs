@@ -130,6 +130,7 @@ impl FloatingBodies {
     pub fn reset(&mut self) {
         for b in &mut self.bodies {
             b.state = b.initial;
+            b.rests.clear();
         }
         self.steps = 0;
         self.loaded = false;

@@ -88,6 +88,10 @@ pub struct FloatingBody {
     pub report: LoadReport,
     /// Per-vertex scratch reused every step (no allocation after the first).
     pub(super) corners: Vec<super::water_forces::Corner>,
+    /// Per hull vertex, the rest point (water model's frame) of the water above it at the last
+    /// step: where the next step's height query starts. NaN before the first step and after a
+    /// reset, so a run from t = 0 repeats exactly.
+    pub(super) rests: Vec<glam::Vec2>,
     /// The hull's face planes, for contacts with other bodies.
     pub(super) planes: super::body_contact::FacePlanes,
 }
@@ -111,6 +115,7 @@ impl FloatingBody {
             name,
             corners: Vec::with_capacity(hull.positions.len()),
             planes: super::body_contact::FacePlanes::of(&hull),
+            rests: Vec::new(),
             hull,
             material,
             inverse_inertia,

@@ -84,10 +84,11 @@ pub(super) fn water_load<E: BodyEnvironment + ?Sized>(
     let s = body.state;
     let mut corners = std::mem::take(&mut body.corners);
     corners.clear();
-    for p in &body.hull.positions {
+    body.rests.resize(body.hull.positions.len(), glam::Vec2::NAN);
+    for (p, rest) in body.hull.positions.iter().zip(&mut body.rests) {
         let world = s.position + s.orientation * p.as_dvec3();
         let (x, z) = (world.x as f32, world.z as f32);
-        let corner = match env.water_height(x, z, t) {
+        let corner = match env.water_height_near(x, z, t, rest) {
             // Ground above the water there means no water: a wave does not run through a dune.
             Some(h) if env.ground_height(x, z).is_none_or(|g| g < h) => Corner {
                 position: world,

@@ -36,6 +36,15 @@ pub trait WaveModel: Send + Sync {
         Vec3::ZERO
     }
 
+    /// [`WaveModel::height_at`] given `rest`, a guess of the rest point whose displaced position
+    /// lands on (x, z) (a floating body's vertex keeps its answer of the step before), which a
+    /// model that inverts its horizontal motion starts from and leaves at the point it found:
+    /// the same height to the inversion's tolerance, in fewer iterations. The default ignores the
+    /// guess and leaves it alone.
+    fn height_near(&self, x: f32, z: f32, t: f64, _rest: &mut Vec2) -> f32 {
+        self.height_at(x, z, t)
+    }
+
     /// Moves internal state to time `t` (s) before [`WaveModel::evaluate`] is called for `t`.
     ///
     /// Stateless (closed-form) models ignore it, which is the default. Time-stepped models (spring

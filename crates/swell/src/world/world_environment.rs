@@ -27,6 +27,13 @@ impl BodyEnvironment for WorldEnvironment<'_> {
     }
 
     fn water_height(&self, x: f32, z: f32, t: f64) -> Option<f32> {
+        let mut rest = Vec2::NAN;
+        self.water_height_near(x, z, t, &mut rest)
+    }
+
+    /// The model's [`crate::water::WaveModel::height_near`] at the local point, `rest` in the
+    /// model's frame.
+    fn water_height_near(&self, x: f32, z: f32, t: f64, rest: &mut Vec2) -> Option<f32> {
         let w = self.water.as_deref()?;
         let local = w.placement.to_local_xz(Vec2::new(x, z));
         if w.extent == WaterExtent::Patch {
@@ -36,7 +43,7 @@ impl BodyEnvironment for WorldEnvironment<'_> {
                 return None;
             }
         }
-        let h = w.placement.to_world_height(w.model.height_at(local.x, local.y, t));
+        let h = w.placement.to_world_height(w.model.height_near(local.x, local.y, t, rest));
         h.is_finite().then_some(h)
     }
 
