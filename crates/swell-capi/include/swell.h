@@ -22,6 +22,12 @@
  *
  * Long calls: a spring mesh asked minutes ahead reports progress to the callback set by
  * swell_water_set_progress, and stops (SWELL_RESULT_CANCELLED) when it returns non-zero.
+ *
+ * Floating bodies: a SwellScene steps its [[body]]s at a fixed 120 Hz on its own water
+ * (swell_scene_advance, swell_scene_body_poses: positions x, y, z and quaternions x, y, z, w,
+ * doubles, the Rust library's World::body_poses bit for bit); bodies are added into the running
+ * scene from a [[body]] TOML table or from parameters and pushed by a thrust. Times before 0 are
+ * refused for bodies, and no NaN is ever written into a pose.
  */
 
 #ifndef SWELL_H
@@ -53,7 +59,8 @@ typedef enum SwellResult {
   SWELL_RESULT_CANCELLED = 6,
 } SwellResult;
 
-// A whole scene (water, terrain, camera, lights, sky), ready to render.
+// A whole scene (water, terrain, camera, lights, sky, floating bodies), ready to render and to
+// step its floating bodies (`swell_scene_body_poses`).
 // Created by `swell_scene_from_toml`, freed by `swell_scene_destroy`.
 typedef struct SwellScene SwellScene;
 
@@ -236,9 +243,10 @@ enum SwellResult swell_water_coverage_f64(const struct SwellWater *water,
                                           uint8_t *mask,
                                           size_t mask_len);
 
-// Parses a scene's TOML text and builds it (water, terrain, meshes) for rendering. On success
+// Parses a scene's TOML text and builds it (water, terrain, meshes) for rendering, with its
+// floating bodies (`[[body]]`) at t = 0 (`swell_scene_body_poses` steps them). On success
 // `*out` is a new handle for `swell_scene_destroy`; on failure `*out` is set to NULL. Relative
-// heightmap paths in the text are relative to the working directory.
+// heightmap and mesh paths in the text are relative to the working directory.
 //
 // # Safety
 // `toml` is a NUL-terminated UTF-8 string; `out` points to writable storage for one pointer.
@@ -271,6 +279,127 @@ enum SwellResult swell_scene_render_rgba8(struct SwellScene *scene,
                                           double t,
                                           uint8_t *rgba,
                                           size_t rgba_len);
+
+// How many floating bodies (`[[body]]`) the scene has, added ones included: `*count`, in
+// [0, 1024].
+//
+// # Safety
+// `scene` is a live handle; `count` points to a writable `size_t`.
+enum SwellResult swell_scene_body_count(const struct SwellScene *scene, size_t *count);
+
+// The name of body `index` (in [0, count)), UTF-8, NUL-terminated, into `name` (`name_len`
+// bytes). `*name_size` always receives the bytes the name needs, its NUL included; a
+// `name_len` below it is refused (`SWELL_RESULT_INVALID_ARGUMENT`) and nothing is written to
+// `name`. `name` may be NULL when `name_len` is 0: a call that only asks the size. A body the
+// scene leaves unnamed is `body<index>`.
+//
+// # Safety
+// `scene` is a live handle; `name` is NULL or points to `name_len` writable bytes; `name_size`
+// points to a writable `size_t`.
+enum SwellResult swell_scene_body_name(const struct SwellScene *scene,
+                                       size_t index,
+                                       char *name,
+                                       size_t name_len,
+                                       size_t *name_size);
+
+// The index of the body named `name` (UTF-8, NUL-terminated) into `*index`; a name no body has
+// is refused (`SWELL_RESULT_INVALID_ARGUMENT`) and `*index` left as it was.
+//
+// # Safety
+// `scene` is a live handle; `name` is a NUL-terminated string; `index` points to a writable
+// `size_t`.
+enum SwellResult swell_scene_body_index(const struct SwellScene *scene,
+                                        const char *name,
+                                        size_t *index);
+
+// Moves the scene to time `t` (s, in [0, 1e7]): its floating bodies step at 120 Hz up to `t`,
+// each step on the water at that step's time, and the water model moves to `t` (the drawn surface
+// is moved by the next `swell_scene_render_rgba8`). The steps are the fixed 120 Hz ones whatever
+// times are asked, so a pose does not depend on the frame rate: `t` reached in one call or in 60
+// fps steps gives the same numbers. A `t` before the scene's time replays from t = 0 (the bodies
+// added later held until their release, the thrusts as they are now), which costs the steps from
+// 0 to `t`; going forward costs the steps from the scene's time. Each step moves the water model
+// to its time (for the FFT ocean, one synthesis a step). Fails with `SWELL_RESULT_UNSTABLE` if a
+// body left the finite numbers; the bodies are then back at t = 0.
+//
+// # Safety
+// `scene` is a live handle.
+enum SwellResult swell_scene_advance(struct SwellScene *scene, double t);
+
+// Moves the scene to time `t` (s, in [0, 1e7]) as `swell_scene_advance` does, then writes every
+// body's pose at `t`, in body order: `positions` receives the centre of mass (x, y, z, world m),
+// `rotations` the unit quaternion (x, y, z, w) turning the body's frame into the world's, so
+// `positions_len` must be `3 * count` and `rotations_len` `4 * count` (`swell_scene_body_count`).
+// The numbers are `World::body_poses()` of the Rust library, and those `swell bake` writes to
+// `bodies.json`. Nothing is written on failure, and never a NaN: a non-finite pose is refused
+// with `SWELL_RESULT_UNSTABLE`.
+//
+// # Safety
+// `scene` is a live handle; `positions` and `rotations` point to `positions_len` and
+// `rotations_len` writable doubles, not overlapping.
+enum SwellResult swell_scene_body_poses(struct SwellScene *scene,
+                                        double t,
+                                        double *positions,
+                                        size_t positions_len,
+                                        double *rotations,
+                                        size_t rotations_len);
+
+// Adds a floating body described by `toml`, the text of one `[[body]]` table as a scene file
+// holds it, header included (`"[[body]]\nshape = 'box'\nsize = [1.0, 0.5, 2.0]\n..."`, every key
+// of docs/scene-format.md; a mesh's relative `path` is relative to the working directory). It
+// joins the scene as its last body, held still at its initial pose until the next body step
+// after the scene's time (later if its `release_time` says so), then free; `*index` (if `index`
+// is not NULL) receives its index. Refused with `SWELL_RESULT_SCENE` and a message naming the key
+// as the scene numbers the new body (`toml: body[3].size[0] = -1 is outside [0.02, 1000]`): bad
+// keys, a name another body has, text holding anything but one `[[body]]` table, a body starting
+// inside the terrain.
+//
+// # Safety
+// `scene` is a live handle; `toml` is a NUL-terminated UTF-8 string; `index` is NULL or points to
+// a writable `size_t`.
+enum SwellResult swell_scene_add_body_toml(struct SwellScene *scene,
+                                           const char *toml,
+                                           size_t *index);
+
+// Adds a floating body from parameters, as `swell_scene_add_body_toml` does with the keys
+// `name` (NULL or "" for `body<index>`), `shape` ("box", "sphere" or "capsule"; a mesh needs its
+// file: use the TOML form), `size` (`size_len` doubles, m: box [x, y, z] full extents, sphere
+// [radius], capsule [radius, length], each in [0.02, 1000]), `density` (kg/m³, in [10, 20000];
+// 500 floats half under) and the centre of mass at (`x`, `y`, `z`) (world m, each within 1e5),
+// unturned and at rest; every other key at its default. The numbers are narrowed to the scene's
+// floats. `*index` (if `index` is not NULL) receives the new body's index. Refused with
+// `SWELL_RESULT_INVALID_ARGUMENT` and a message naming the key (`body[3].density = 0 is outside
+// [10, 20000]`).
+//
+// # Safety
+// `scene` is a live handle; `name` is NULL or a NUL-terminated string; `shape` is a
+// NUL-terminated string; `size` points to `size_len` readable doubles; `index` is NULL or points
+// to a writable `size_t`.
+enum SwellResult swell_scene_add_body(struct SwellScene *scene,
+                                      const char *name,
+                                      const char *shape,
+                                      const double *size,
+                                      size_t size_len,
+                                      double density,
+                                      double x,
+                                      double y,
+                                      double z,
+                                      size_t *index);
+
+// Sets the thrust of body `index`: a force (`fx`, `fy`, `fz`) in newtons, world axes, applied at
+// its centre of mass from the next body step on, on top of gravity's, the water's and the
+// ground's (an engine's propeller, a player's push); (0, 0, 0) removes it. It is not part of the
+// scene: a time before the scene's replays from t = 0 with the thrust as it is now. A force so
+// strong that a body leaves the finite numbers fails the next advance with
+// `SWELL_RESULT_UNSTABLE`.
+//
+// # Safety
+// `scene` is a live handle.
+enum SwellResult swell_scene_set_body_thrust(struct SwellScene *scene,
+                                             size_t index,
+                                             double fx,
+                                             double fy,
+                                             double fz);
 
 #ifdef __cplusplus
 }  // extern "C"

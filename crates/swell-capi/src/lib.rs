@@ -8,8 +8,8 @@
 //! - on failure stores the error's message, the text the CLI prints after `error: `, for
 //!   [`swell_last_error_message`] on the calling thread.
 //!
-//! Handles are `Box`es of a `Mutex` around the library's [`swell_lib::Water`] or a rendered
-//! [`swell_lib::world::World`]; the lock serialises calls on one handle. All live handles run
+//! Handles are `Box`es of a `Mutex` around the library's [`swell_lib::Water`] or a
+//! [`swell_lib::world::World`] (rendered, and stepping its floating bodies: `bodies.rs`); the lock serialises calls on one handle. All live handles run
 //! their work on one shared rayon pool (one thread per core, however many handles: 200 handles
 //! once meant 400 threads on 2 cores), whose threads are joined when the last handle is
 //! destroyed: the library leaves no thread behind (rayon's global pool, never joined, would still
@@ -68,7 +68,8 @@ pub struct SwellWater {
     pool: Arc<Pool>,
 }
 
-/// A whole scene (water, terrain, camera, lights, sky), ready to render.
+/// A whole scene (water, terrain, camera, lights, sky, floating bodies), ready to render and to
+/// step its floating bodies (`swell_scene_body_poses`).
 /// Created by `swell_scene_from_toml`, freed by `swell_scene_destroy`.
 pub struct SwellScene {
     inner: Mutex<SceneState>,
@@ -167,7 +168,7 @@ impl From<Error> for Failure {
 
 /// Whether an error key is a scene key (as opposed to a parameter of a C function).
 fn is_scene_key(key: &str) -> bool {
-    ["water", "terrain", "camera", "light", "sky", "render", "version", "scene"]
+    ["water", "terrain", "camera", "light", "sky", "render", "version", "scene", "body"]
         .iter()
         .any(|s| key == *s || key.starts_with(&format!("{s}.")) || key.starts_with(&format!("{s}[")))
 }
@@ -681,9 +682,10 @@ pub unsafe extern "C" fn swell_water_coverage_f64(
     unsafe { coverage::<f64, DVec2>(water, xz, xz_len, mask, mask_len, Water::has_water_at_f64) }
 }
 
-/// Parses a scene's TOML text and builds it (water, terrain, meshes) for rendering. On success
+/// Parses a scene's TOML text and builds it (water, terrain, meshes) for rendering, with its
+/// floating bodies (`[[body]]`) at t = 0 (`swell_scene_body_poses` steps them). On success
 /// `*out` is a new handle for `swell_scene_destroy`; on failure `*out` is set to NULL. Relative
-/// heightmap paths in the text are relative to the working directory.
+/// heightmap and mesh paths in the text are relative to the working directory.
 ///
 /// # Safety
 /// `toml` is a NUL-terminated UTF-8 string; `out` points to writable storage for one pointer.
@@ -775,6 +777,9 @@ pub unsafe extern "C" fn swell_scene_render_rgba8(
         Ok(())
     })
 }
+
+mod bodies;
+pub use bodies::*;
 
 #[cfg(test)]
 mod tests;

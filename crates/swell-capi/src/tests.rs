@@ -441,3 +441,430 @@ fn a_measured_sea_in_the_scene_text_is_the_library_s() {
     assert_eq!(unsafe { swell_water_from_toml(bad.as_ptr(), &mut out) }, SwellResult::Scene);
     assert!(last_error().contains("water.spectrum_table[0].efth[1][0] = -0.5 is outside [0, "), "{}", last_error());
 }
+
+// Floating bodies (issue 34).
+
+/// A sines sea (1000 kg/m³) with a crate of pine, a buoy and a falling log, over a patch of
+/// 40 m: the scene of the bodies' tests and of the Python package's reference poses.
+const BODIES_SCENE: &str = "version = 1\n\
+[water]\nmodel = 'sines'\nsize = [40.0, 40.0]\ncells = [16, 16]\ndensity = 1000.0\n\
+[[water.waves]]\namplitude = 0.2\nwavelength = 12.0\nspeed = 4.3\ndirection = [1.0, 0.2]\n\
+[[body]]\nname = 'crate'\nshape = 'box'\nsize = [1.0, 0.5, 2.0]\ndensity = 500.0\nposition = [0.0, 0.3, 0.0]\nrotation_deg = [20.0, 0.0, 0.0]\n\
+[[body]]\nname = 'buoy'\nshape = 'sphere'\nsize = [0.4]\nmass = 40.0\nposition = [-4.0, 0.5, 2.0]\n\
+[[body]]\nname = 'log'\nshape = 'capsule'\nsize = [0.25, 2.0]\nposition = [3.0, 1.0, -1.0]\nvelocity = [0.0, -1.0, 0.0]\n";
+
+fn scene(text: &str) -> *mut SwellScene {
+    let text = CString::new(text).unwrap();
+    let mut s = null_mut();
+    assert_eq!(unsafe { swell_scene_from_toml(text.as_ptr(), &mut s) }, SwellResult::Ok, "{}", last_error());
+    s
+}
+
+fn body_count(s: *const SwellScene) -> usize {
+    let mut n = usize::MAX;
+    assert_eq!(unsafe { swell_scene_body_count(s, &mut n) }, SwellResult::Ok, "{}", last_error());
+    n
+}
+
+/// Every body's position and rotation at `t` through the C entry point, flat.
+fn c_poses(s: *mut SwellScene, t: f64) -> (Vec<f64>, Vec<f64>) {
+    let n = body_count(s);
+    let (mut p, mut r) = (vec![f64::NAN; 3 * n], vec![f64::NAN; 4 * n]);
+    let code = unsafe { swell_scene_body_poses(s, t, p.as_mut_ptr(), p.len(), r.as_mut_ptr(), r.len()) };
+    assert_eq!(code, SwellResult::Ok, "{}", last_error());
+    (p, r)
+}
+
+/// The library's poses after `World::update(t)`, flat as C has them.
+fn world_poses(w: &mut World, t: f64) -> (Vec<f64>, Vec<f64>) {
+    w.update(t).unwrap();
+    let p = w.body_poses().iter().flat_map(|p| p.position.to_array()).collect();
+    let r = w.body_poses().iter().flat_map(|p| p.rotation.to_array()).collect();
+    (p, r)
+}
+
+fn c_name(s: *const SwellScene, k: usize) -> String {
+    let mut size = 0;
+    assert_eq!(unsafe { swell_scene_body_name(s, k, null_mut(), 0, &mut size) }, SwellResult::Ok);
+    let mut buf = vec![0x55u8; size];
+    let r = unsafe { swell_scene_body_name(s, k, buf.as_mut_ptr().cast(), buf.len(), &mut size) };
+    assert_eq!(r, SwellResult::Ok, "{}", last_error());
+    CStr::from_bytes_with_nul(&buf).unwrap().to_str().unwrap().to_string()
+}
+
+#[test]
+fn body_poses_from_c_are_the_world_s_however_the_time_is_reached() {
+    let s = scene(BODIES_SCENE);
+    assert_eq!(body_count(s), 3);
+    assert_eq!((0..3).map(|k| c_name(s, k)).collect::<Vec<_>>(), ["crate", "buoy", "log"]);
+    let mut k = usize::MAX;
+    let log = CString::new("log").unwrap();
+    assert_eq!(unsafe { swell_scene_body_index(s, log.as_ptr(), &mut k) }, SwellResult::Ok);
+    assert_eq!(k, 2);
+    let mut world = World::new(Scene::from_toml(BODIES_SCENE, "t").unwrap()).unwrap();
+    // Straight to 2.5 s, at t = 0, and back to an earlier time (a replay from t = 0).
+    for t in [2.5, 0.0, 1.2345] {
+        assert_eq!(c_poses(s, t), world_poses(&mut world, t), "t = {t}");
+    }
+    // 60 fps steps through swell_scene_advance on a second handle reach the same numbers.
+    let stepped = scene(BODIES_SCENE);
+    for f in 0..=150 {
+        assert_eq!(unsafe { swell_scene_advance(stepped, f64::from(f) / 60.0) }, SwellResult::Ok);
+    }
+    assert_eq!(c_poses(stepped, 2.5), c_poses(s, 2.5));
+    let (p, r) = c_poses(s, 2.5);
+    // The quaternions are unit and the bodies afloat near the water at rest.
+    for (pos, q) in p.chunks(3).zip(r.chunks(4)) {
+        assert!((q.iter().map(|v| v * v).sum::<f64>().sqrt() - 1.0).abs() < 1e-9, "{q:?}");
+        assert!(pos[1].abs() < 0.6, "{pos:?}");
+    }
+    // Rendering moves the same world: the poses at the render's time are unchanged by it.
+    let (mut width, mut height) = (0, 0);
+    assert_eq!(unsafe { swell_scene_image_size(s, &mut width, &mut height) }, SwellResult::Ok);
+    let mut rgba = vec![0u8; 4 * width as usize * height as usize];
+    assert_eq!(unsafe { swell_scene_render_rgba8(s, 2.5, rgba.as_mut_ptr(), rgba.len()) }, SwellResult::Ok);
+    assert_eq!(c_poses(s, 2.5), world_poses(&mut world, 2.5));
+    unsafe { (swell_scene_destroy(s), swell_scene_destroy(stepped)) };
+}
+
+#[test]
+fn a_scene_without_bodies_has_none_and_takes_one_at_its_time() {
+    let s = scene(sea_text(4).to_str().unwrap());
+    assert_eq!(body_count(s), 0);
+    let (mut p, mut r) = ([7.0f64; 1], [7.0f64; 1]);
+    assert_eq!(unsafe { swell_scene_body_poses(s, 1.0, p.as_mut_ptr(), 0, r.as_mut_ptr(), 0) }, SwellResult::Ok);
+    assert_eq!((p, r), ([7.0], [7.0]));
+    let mut size = 0;
+    let code = unsafe { swell_scene_body_name(s, 0, null_mut(), 0, &mut size) };
+    assert_eq!((code, last_error().as_str()), (SwellResult::InvalidArgument, "index: 0; the scene has no bodies"));
+    // A body added at t = 3 s is dropped then, not at t = 0 (the scene never stepped bodies).
+    assert_eq!(unsafe { swell_scene_advance(s, 3.0) }, SwellResult::Ok);
+    let (shape, size) = (CString::new("box").unwrap(), [2.0, 0.5, 2.0]);
+    let r =
+        unsafe { swell_scene_add_body(s, null(), shape.as_ptr(), size.as_ptr(), 3, 500.0, 0.0, 2.0, 0.0, null_mut()) };
+    assert_eq!(r, SwellResult::Ok, "{}", last_error());
+    assert_eq!(c_poses(s, 3.0), (vec![0.0, 2.0, 0.0], vec![0.0, 0.0, 0.0, 1.0]));
+    // About g t² / 2 = 0.2 m fallen in 0.2 s, not three seconds' worth.
+    let y = c_poses(s, 3.2).0[1];
+    assert!((1.7..1.85).contains(&y), "{y}");
+    unsafe { swell_scene_destroy(s) };
+}
+
+/// The body the reference protocol adds from TOML (at `ADD_FRAME`) and the one it adds from
+/// parameters (`BALL_*`, at the same frame), and the thrust it then gives the crate.
+const ADDED_BODY: &str = "[[body]]\nname = 'barrel'\nshape = 'capsule'\nsize = [0.3, 0.8]\ndensity = 400.0\n\
+                          position = [1.0, 1.5, 3.0]\nrotation_deg = [0.0, 0.0, 90.0]\n";
+const BALL_SIZE: f64 = 0.3;
+const BALL_DENSITY: f64 = 300.0;
+const BALL_POSITION: [f64; 3] = [-1.0, 2.0, 0.5];
+const THRUST: [f64; 3] = [300.0, 0.0, -50.0];
+/// Frames at 60 fps: the bodies are added at frame `ADD_FRAME` (1 s), the thrust set at
+/// `THRUST_FRAME`, and every `RECORD_EVERY`th frame's poses kept, up to `LAST_FRAME` (3 s).
+const ADD_FRAME: u32 = 60;
+const THRUST_FRAME: u32 = 90;
+const RECORD_EVERY: u32 = 15;
+const LAST_FRAME: u32 = 180;
+
+/// `text` as a JSON string.
+fn json_string(text: &str) -> String {
+    let mut out = String::from('"');
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// Numbers as a JSON array: `{:?}` writes the shortest decimal that reads back to the same f64
+/// (Python's `json` reads it so), in a form JSON accepts (`0.5`, `1e-7`, `-0.0`).
+fn json_numbers(v: &[f64]) -> String {
+    format!("[{}]", v.iter().map(|x| format!("{x:?}")).collect::<Vec<_>>().join(", "))
+}
+
+/// The reference protocol run through the C entry points and, beside it, through the library's
+/// `World` (bodies added into the running scene from TOML and from parameters, a thrust, 60 fps
+/// steps): every frame's poses must agree bit for bit. Its records are the reference the Python
+/// package's tests hold their poses to (`crates/swell-py/tests/bodies_reference.json`, compared
+/// with what this test writes; `SWELL_BLESS=1 cargo test -p swell-capi` rewrites it), so C, Rust
+/// and Python float the same bodies the same way.
+#[test]
+fn added_bodies_and_thrust_are_the_library_s_and_the_python_reference() {
+    let s = scene(BODIES_SCENE);
+    let mut world = World::new(Scene::from_toml(BODIES_SCENE, "t").unwrap()).unwrap();
+    let mut records = Vec::new();
+    for f in 0..=LAST_FRAME {
+        let t = f64::from(f) / 60.0;
+        let poses = c_poses(s, t);
+        assert_eq!(poses, world_poses(&mut world, t), "t = {t}");
+        if f % RECORD_EVERY == 0 {
+            records.push((f, t, poses));
+        }
+        if f == ADD_FRAME {
+            let text = CString::new(ADDED_BODY).unwrap();
+            let mut k = usize::MAX;
+            let r = unsafe { swell_scene_add_body_toml(s, text.as_ptr(), &mut k) };
+            assert_eq!((r, k), (SwellResult::Ok, 3), "{}", last_error());
+            let spec = Scene::from_toml(ADDED_BODY, "t").unwrap().bodies.remove(0);
+            assert_eq!(world.add_body(spec).unwrap(), 3);
+            let (shape, [x, y, z]) = (CString::new("sphere").unwrap(), BALL_POSITION);
+            let r = unsafe {
+                swell_scene_add_body(s, null(), shape.as_ptr(), &BALL_SIZE, 1, BALL_DENSITY, x, y, z, &mut k)
+            };
+            assert_eq!((r, k), (SwellResult::Ok, 4), "{}", last_error());
+            let position = Vec3::new(x as f32, y as f32, z as f32);
+            let mut ball =
+                swell_lib::body::BodySpec::new(swell_lib::body::BodyShape::Sphere, &[BALL_SIZE as f32], position);
+            ball.density = Some(BALL_DENSITY as f32);
+            assert_eq!(world.add_body(ball).unwrap(), 4);
+        }
+        if f == THRUST_FRAME {
+            let [x, y, z] = THRUST;
+            assert_eq!(unsafe { swell_scene_set_body_thrust(s, 0, x, y, z) }, SwellResult::Ok);
+            world.bodies.bodies_mut()[0].thrust = DVec3::from_array(THRUST);
+        }
+    }
+    let names: Vec<String> = (0..body_count(s)).map(|k| c_name(s, k)).collect();
+    assert_eq!(names, ["crate", "buoy", "log", "barrel", "body4"]);
+    // Held until released, then fallen onto the water; the crate pushed along +X.
+    let (p, _) = &records.last().unwrap().2;
+    assert!(p[3 * 3 + 1] < 1.0 && p[3 * 4 + 1] < 1.0, "{p:?}");
+    let mut unpushed = World::new(Scene::from_toml(BODIES_SCENE, "t").unwrap()).unwrap();
+    unpushed.update(f64::from(LAST_FRAME) / 60.0).unwrap();
+    assert!(p[0] > unpushed.body_poses()[0].position.x + 0.2, "{} vs {}", p[0], unpushed.body_poses()[0].position);
+    unsafe { swell_scene_destroy(s) };
+
+    let mut json = String::from("{\n");
+    json.push_str(
+        "  \"about\": \"Reference poses of floating bodies for the Python tests (test_bodies.py), written by \
+         crates/swell-capi/src/tests.rs (added_bodies_and_thrust_are_the_library_s_and_the_python_reference) from the \
+         C API and the Rust library, which agree bit for bit. Do not edit: SWELL_BLESS=1 cargo test -p swell-capi \
+         rewrites it.\",\n",
+    );
+    json.push_str(&format!("  \"scene\": {},\n", json_string(BODIES_SCENE)));
+    json.push_str(&format!("  \"add_frame\": {ADD_FRAME},\n  \"add_toml\": {},\n", json_string(ADDED_BODY)));
+    json.push_str(&format!(
+        "  \"add_keys\": {{\"shape\": \"sphere\", \"size\": [{BALL_SIZE:?}], \"density\": {BALL_DENSITY:?}, \"position\": {}}},\n",
+        json_numbers(&BALL_POSITION)
+    ));
+    json.push_str(&format!(
+        "  \"thrust_frame\": {THRUST_FRAME},\n  \"thrust_body\": 0,\n  \"thrust\": {},\n",
+        json_numbers(&THRUST)
+    ));
+    json.push_str(&format!("  \"last_frame\": {LAST_FRAME},\n  \"record_every\": {RECORD_EVERY},\n"));
+    let quoted: Vec<String> = names.iter().map(|n| json_string(n)).collect();
+    json.push_str(&format!("  \"names\": [{}],\n  \"records\": [\n", quoted.join(", ")));
+    let lines: Vec<String> = records
+        .iter()
+        .map(|(f, t, (p, r))| {
+            let p: Vec<String> = p.chunks(3).map(json_numbers).collect();
+            let r: Vec<String> = r.chunks(4).map(json_numbers).collect();
+            format!(
+                "    {{\"frame\": {f}, \"t\": {t:?}, \"positions\": [{}], \"rotations\": [{}]}}",
+                p.join(", "),
+                r.join(", ")
+            )
+        })
+        .collect();
+    json.push_str(&lines.join(",\n"));
+    json.push_str("\n  ]\n}\n");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../swell-py/tests/bodies_reference.json");
+    if std::env::var_os("SWELL_BLESS").is_some() {
+        std::fs::write(&path, &json).unwrap();
+        return;
+    }
+    let checked_in = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        checked_in == json,
+        "{} is stale: run `SWELL_BLESS=1 cargo test -p swell-capi` and commit it",
+        path.display()
+    );
+}
+
+#[test]
+fn bad_body_inputs_are_refused_with_a_code_and_a_message_naming_the_argument() {
+    let s = scene(BODIES_SCENE);
+    let (mut p, mut r) = (vec![7.0f64; 9], vec![7.0f64; 12]);
+    let poses = |s: *mut SwellScene, t: f64, pl: usize, rl: usize, p: &mut Vec<f64>, r: &mut Vec<f64>| unsafe {
+        swell_scene_body_poses(s, t, p.as_mut_ptr(), pl, r.as_mut_ptr(), rl)
+    };
+    let cases: Vec<(SwellResult, SwellResult, &str)> = vec![
+        (poses(null_mut(), 1.0, 9, 12, &mut p, &mut r), SwellResult::NullPointer, "scene: is NULL"),
+        (
+            poses(s, f64::NAN, 9, 12, &mut p, &mut r),
+            SwellResult::InvalidArgument,
+            "t = NaN is outside [0, 1e7] seconds (floating bodies start at t = 0)",
+        ),
+        (
+            poses(s, -0.5, 9, 12, &mut p, &mut r),
+            SwellResult::InvalidArgument,
+            "t = -0.5 is outside [0, 1e7] seconds (floating bodies start at t = 0)",
+        ),
+        (
+            poses(s, 1.0, 8, 12, &mut p, &mut r),
+            SwellResult::InvalidArgument,
+            "positions_len: 8; must be 9 (3 doubles per body x 3 bodies)",
+        ),
+        (
+            poses(s, 1.0, 9, 9, &mut p, &mut r),
+            SwellResult::InvalidArgument,
+            "rotations_len: 9; must be 12 (4 doubles per body x 3 bodies)",
+        ),
+        (
+            unsafe { swell_scene_body_poses(s, 1.0, null_mut(), 9, r.as_mut_ptr(), 12) },
+            SwellResult::NullPointer,
+            "positions: is NULL",
+        ),
+        (
+            unsafe { swell_scene_advance(s, f64::INFINITY) },
+            SwellResult::InvalidArgument,
+            "t = inf is outside [0, 1e7] seconds (floating bodies start at t = 0)",
+        ),
+        (unsafe { swell_scene_advance(null_mut(), 1.0) }, SwellResult::NullPointer, "scene: is NULL"),
+        (unsafe { swell_scene_body_count(s, null_mut()) }, SwellResult::NullPointer, "count: is NULL"),
+        (
+            unsafe { swell_scene_set_body_thrust(s, 3, 1.0, 0.0, 0.0) },
+            SwellResult::InvalidArgument,
+            "index: 3; must be below 3 (the scene's bodies)",
+        ),
+        (
+            unsafe { swell_scene_set_body_thrust(s, 0, 1.0, f64::NAN, 0.0) },
+            SwellResult::InvalidArgument,
+            "fy: NaN is not a finite force (newtons)",
+        ),
+        (
+            unsafe { swell_scene_body_index(s, CString::new("raft").unwrap().as_ptr(), &mut 0) },
+            SwellResult::InvalidArgument,
+            "name: \"raft\" names none of the scene's 3 bodies",
+        ),
+        (unsafe { swell_scene_body_name(s, 0, null_mut(), 4, &mut 0) }, SwellResult::NullPointer, "name: is NULL"),
+    ];
+    for (got, code, message) in cases {
+        assert_eq!(got, code, "{message}");
+    }
+    // The messages, one call at a time, and nothing written by a refused call.
+    assert_eq!(poses(s, f64::NAN, 9, 12, &mut p, &mut r), SwellResult::InvalidArgument);
+    assert_eq!(last_error(), "t = NaN is outside [0, 1e7] seconds (floating bodies start at t = 0)");
+    assert_eq!(poses(s, 1.0, 9, 13, &mut p, &mut r), SwellResult::InvalidArgument);
+    assert_eq!(last_error(), "rotations_len: 13; must be 12 (4 doubles per body x 3 bodies)");
+    assert!(p.iter().chain(&r).all(|v| *v == 7.0));
+    assert_eq!(unsafe { swell_scene_set_body_thrust(s, 7, 0.0, 0.0, 0.0) }, SwellResult::InvalidArgument);
+    assert_eq!(last_error(), "index: 7; must be below 3 (the scene's bodies)");
+    assert_eq!(unsafe { swell_scene_set_body_thrust(s, 0, 0.0, 0.0, f64::NEG_INFINITY) }, SwellResult::InvalidArgument);
+    assert_eq!(last_error(), "fz: -inf is not a finite force (newtons)");
+    // A name buffer too short gets nothing but the size it needs.
+    let (mut buf, mut size) = ([0x55u8; 4], 0);
+    let code = unsafe { swell_scene_body_name(s, 0, buf.as_mut_ptr().cast(), 4, &mut size) };
+    assert_eq!((code, size, buf), (SwellResult::InvalidArgument, 6, [0x55; 4]));
+    assert_eq!(last_error(), "name_len: 4; must be at least 6 (the name's 5 bytes and a NUL)");
+    unsafe { swell_scene_destroy(s) };
+}
+
+/// A body added from TOML is refused naming its key as the scene numbers the new body
+/// (`body[3]`, not the snippet's `body[0]`), with the snippet's own line numbers for a syntax error;
+/// from parameters, as an argument error.
+#[test]
+fn bad_added_bodies_are_refused_naming_the_key() {
+    let s = scene(BODIES_SCENE);
+    let add_toml = |text: &str| {
+        let text = CString::new(text).unwrap();
+        let mut k = 99;
+        let r = unsafe { swell_scene_add_body_toml(s, text.as_ptr(), &mut k) };
+        assert_eq!(k, 99, "the index is written only on success");
+        (r, last_error())
+    };
+    for (text, code, message) in [
+        (
+            "[[body]]\nshape = 'box'\nsize = [1.0, 0.5]\n",
+            SwellResult::Scene,
+            "toml: body[3].size: [1.0, 0.5] has 2 values; shape box takes [x, y, z] (full extents, m)",
+        ),
+        (
+            "[[body]]\nshape = 'boat'\nsize = [1.0]\n",
+            SwellResult::Scene,
+            "toml: body[3].shape: unknown variant `boat`, expected one of `box`, `sphere`, `capsule`, `mesh`",
+        ),
+        (
+            "[[body]]\nname = 'buoy'\nshape = 'sphere'\nsize = [0.5]\n",
+            SwellResult::Scene,
+            "toml: body[3].name: \"buoy\" names an earlier body too; names must be unique",
+        ),
+        (
+            "[[body]]\nshape = 'sphere'\nsize = [0.5]\n[[body]]\nshape = 'sphere'\nsize = [0.5]\n",
+            SwellResult::Scene,
+            "toml: holds 2 [[body]] tables; give exactly one [[body]] table (its header and keys) and nothing else",
+        ),
+        (
+            "[[body]]\nshape = 'sphere'\nsize = [0.5]\n[render]\nwidth = 64\n",
+            SwellResult::Scene,
+            "toml: holds 1 [[body]] table and other sections; give exactly one [[body]] table (its header and keys) and nothing else",
+        ),
+    ] {
+        let (r, e) = add_toml(text);
+        assert_eq!(r, code, "{text}: {e}");
+        assert!(e.starts_with(message), "{text}: {e}");
+    }
+    // A syntax error counts the snippet's lines, not those of the scene's bodies read before it.
+    let (r, e) = add_toml("[[body]]\nshape = 'sphere'\nsize = [0.5\n");
+    assert_eq!(r, SwellResult::Scene);
+    assert!(e.starts_with("toml: TOML parse error at line 3"), "{e}");
+    assert_eq!(unsafe { swell_scene_add_body_toml(s, null(), null_mut()) }, SwellResult::NullPointer);
+    assert_eq!(last_error(), "toml: is NULL");
+
+    let add = |shape: &str, size: &[f64], density: f64| {
+        let shape = CString::new(shape).unwrap();
+        let r = unsafe {
+            swell_scene_add_body(
+                s,
+                null(),
+                shape.as_ptr(),
+                size.as_ptr(),
+                size.len(),
+                density,
+                0.0,
+                1.0,
+                0.0,
+                null_mut(),
+            )
+        };
+        (r, last_error())
+    };
+    for ((shape, size, density), message) in [
+        (("box", &[1.0, 1.0, 1.0][..], 0.0), "body[3].density = 0 is outside [10, 20000]"),
+        (("sphere", &[f64::NAN][..], 500.0), "body[3].size[0] = NaN is outside [0.02, 1000]"),
+        (("boat", &[1.0][..], 500.0), "shape: `boat` is not a body shape; valid: box, sphere, capsule, mesh"),
+        (("mesh", &[][..], 500.0), "shape: \"mesh\" reads its hull from an OBJ file"),
+        (("box", &[1.0, 1.0, 1.0, 1.0][..], 500.0), "size_len: 4; must be 3 (box), 1 (sphere) or 2 (capsule)"),
+    ] {
+        let (r, e) = add(shape, size, density);
+        assert_eq!(r, SwellResult::InvalidArgument, "{e}");
+        assert!(e.starts_with(message), "{e}");
+    }
+    // Nothing refused was added; a good body still is.
+    assert_eq!(body_count(s), 3);
+    assert_eq!(add("box", &[1.0, 1.0, 1.0], 500.0).0, SwellResult::Ok);
+    assert_eq!(body_count(s), 4);
+    unsafe { swell_scene_destroy(s) };
+}
+
+/// A force that throws a body out of the finite numbers fails the call and writes nothing: no
+/// NaN ever reaches the caller's buffers. Taking the force away lets the replay from t = 0 go on.
+#[test]
+fn a_body_thrown_out_of_the_finite_numbers_is_an_error_not_a_nan() {
+    let s = scene(BODIES_SCENE);
+    assert_eq!(unsafe { swell_scene_set_body_thrust(s, 1, 0.0, -1e300, 0.0) }, SwellResult::Ok);
+    let (mut p, mut r) = (vec![7.0f64; 9], vec![7.0f64; 12]);
+    let code = unsafe { swell_scene_body_poses(s, 2.0, p.as_mut_ptr(), 9, r.as_mut_ptr(), 12) };
+    assert_eq!(code, SwellResult::Unstable, "{}", last_error());
+    assert!(last_error().contains("\"buoy\" left the finite numbers"), "{}", last_error());
+    assert!(p.iter().chain(&r).all(|v| *v == 7.0));
+    assert_eq!(unsafe { swell_scene_set_body_thrust(s, 1, 0.0, 0.0, 0.0) }, SwellResult::Ok);
+    let mut world = World::new(Scene::from_toml(BODIES_SCENE, "t").unwrap()).unwrap();
+    assert_eq!(c_poses(s, 2.0), world_poses(&mut world, 2.0));
+    unsafe { swell_scene_destroy(s) };
+}

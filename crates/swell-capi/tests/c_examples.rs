@@ -50,8 +50,14 @@ fn run(cmd: &mut Command) -> String {
 
 /// The scene text of examples/ocean.c: its `SCENE` string literal, unescaped.
 fn example_scene() -> String {
-    let src = std::fs::read_to_string(crate_dir().join("examples/ocean.c")).unwrap();
-    let start = src.find("static const char *SCENE =").expect("ocean.c defines SCENE");
+    example_literal("ocean.c", "SCENE")
+}
+
+/// The string literal `static const char *NAME = "..." "...";` of the example `file`, one literal
+/// per line, unescaped.
+fn example_literal(file: &str, name: &str) -> String {
+    let src = std::fs::read_to_string(crate_dir().join("examples").join(file)).unwrap();
+    let start = src.find(&format!("static const char *{name} =")).unwrap_or_else(|| panic!("{file} defines {name}"));
     let mut text = String::new();
     for line in src[start..].lines().skip(1).map(str::trim) {
         let literal = line.trim_end_matches(';');
@@ -188,4 +194,93 @@ fn the_c_and_cpp_examples_agree_with_the_library_and_pass_valgrind() {
             report.lines().filter(|l| l.contains("SUMMARY")).collect::<Vec<_>>().join(" | ")
         );
     }
+}
+
+/// examples/bodies.c, built with `cc` against the shared library, floats the same bodies as the
+/// Rust library's `World` given the same scene, the same drop of a barrel (its `BARREL` snippet)
+/// and a ball (the parameters bodies.c passes), and the same thrust at the same frames: every
+/// printed pose equal bit for bit (printed with 17 significant digits); then under valgrind.
+#[test]
+fn the_bodies_example_floats_the_library_s_bodies_and_passes_valgrind() {
+    if !(have("cc") && have("pkg-config")) {
+        eprintln!("skipped: cc or pkg-config not found");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let prefix = dir.path().join("prefix");
+    let lib_dir = lib_dir();
+    let flags = install(&prefix, &lib_dir, false);
+    let exe = dir.path().join("bodies_c");
+    run(Command::new("cc")
+        .args(["-std=c99", "-Wall", "-Wextra", "-Werror"])
+        .arg(crate_dir().join("examples/bodies.c"))
+        .args(&flags)
+        .arg("-o")
+        .arg(&exe));
+    let ld = prefix.join("lib");
+    let out = run(Command::new(&exe).env("LD_LIBRARY_PATH", &ld));
+
+    // The library, step for step as bodies.c goes: 24 fps for 4 s, the barrel and the ball dropped
+    // after frame 24, the crate pushed from frame 48.
+    let scene = swell_lib::scene::Scene::from_toml(&example_literal("bodies.c", "SCENE"), "bodies.c").unwrap();
+    let mut world = swell_lib::world::World::new(scene).unwrap();
+    let mut expected = Vec::new();
+    for frame in 0..=96 {
+        let t = f64::from(frame) / 24.0;
+        world.advance(t).unwrap();
+        if frame % 12 == 0 {
+            for (b, p) in world.bodies.bodies().iter().zip(world.body_poses()) {
+                let (q, r) = (p.position, p.rotation);
+                expected.push((t, b.name.clone(), [q.x, q.y, q.z, r.x, r.y, r.z, r.w]));
+            }
+        }
+        if frame == 24 {
+            let barrel = example_literal("bodies.c", "BARREL");
+            let spec = swell_lib::scene::Scene::from_toml(&barrel, "barrel").unwrap().bodies.remove(0);
+            assert_eq!(world.add_body(spec).unwrap(), 1);
+            let shape = swell_lib::body::BodyShape::Sphere;
+            let mut ball = swell_lib::body::BodySpec::new(shape, &[0.25], glam::Vec3::new(2.0, 1.5, 1.0));
+            (ball.name, ball.density) = ("ball".into(), Some(300.0));
+            assert_eq!(world.add_body(ball).unwrap(), 2);
+        }
+        if frame == 48 {
+            world.bodies.bodies_mut()[0].thrust = glam::DVec3::new(400.0, 0.0, 0.0);
+        }
+    }
+    let printed: Vec<(f64, String, Vec<f64>)> = out
+        .lines()
+        .filter(|l| l.starts_with("t "))
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            assert_eq!(w.len(), 10, "{l}");
+            (w[1].parse().unwrap(), w[2].to_string(), w[3..].iter().map(|v| v.parse().unwrap()).collect())
+        })
+        .collect();
+    // 3 frames with the crate alone, 6 with three bodies.
+    assert_eq!(printed.len(), 3 + 6 * 3, "{out}");
+    for ((t, name, pose), (et, ename, epose)) in printed.iter().zip(&expected) {
+        assert_eq!((t, name, &pose[..]), (et, ename, &epose[..]), "{out}");
+    }
+    // Afloat at the end, every one: near the water at rest, neither sunk nor flung away.
+    for (_, name, pose) in &printed[printed.len() - 3..] {
+        assert!(pose[1].abs() < 0.8, "{name}: {pose:?}");
+    }
+    assert!(out.contains("added barrel 1 ball 2"), "{out}");
+    assert!(
+        out.contains("nan time -> 2: t = NaN is outside [0, 1e7] seconds (floating bodies start at t = 0)"),
+        "{out}"
+    );
+    assert!(out.contains("short buffer -> 2: positions_len: 8; must be 9 (3 doubles per body x 3 bodies)"), "{out}");
+    assert!(out.contains("bad body -> 3: toml: body[3].size: [1.0, 0.5] has 2 values; shape box takes"), "{out}");
+    assert!(out.contains("bad index -> 2: index: 3; must be below 3 (the scene's bodies)"), "{out}");
+
+    if !have("valgrind") {
+        eprintln!("valgrind not found: the bodies example ran, but not under valgrind");
+        return;
+    }
+    let report = valgrind(&exe, &ld);
+    eprintln!(
+        "valgrind bodies_c: {}",
+        report.lines().filter(|l| l.contains("SUMMARY")).collect::<Vec<_>>().join(" | ")
+    );
 }

@@ -18,6 +18,8 @@ use swell::render::Renderer;
 use swell::scene::{Scene, MAX_IMAGE_SIDE};
 use swell::world::{sea_stats, water_sea_stats, World};
 
+mod world;
+
 /// The name scene texts are known by in error messages (the C API's too).
 const SOURCE: &str = "toml";
 
@@ -479,6 +481,7 @@ fn stats<'py>(py: Python<'py>, text: &str, t: f64) -> PyResult<Bound<'py, PyDict
 fn _swell(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<Water>()?;
+    m.add_class::<world::World>()?;
     m.add("Cancelled", m.py().get_type::<Cancelled>())?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(stats, m)?)?;

@@ -14,7 +14,11 @@ required for the water queries), answers for any time ``t`` in seconds:
   spectrum E(f, θ), a wavespectra/xarray DataArray (or numpy arrays with their coordinates, or a
   netCDF file as wavespectra writes it: ``read_spectrum(path)``), and ``Water.stats(t)``: Hs, Tp,
   Dpm and Dspr of the input and of the realised sea with wavespectra's definitions, an xarray
-  Dataset when xarray is installed (an optional dependency), else a dict.
+  Dataset when xarray is installed (an optional dependency), else a dict;
+* ``World.from_toml(text)``: a scene's floating bodies (``[[body]]``) riding its water (issue 34):
+  ``advance(t)``, then ``positions`` float64 ``(n, 3)`` and ``rotations`` float64 ``(n, 4)``
+  (quaternions x, y, z, w), ``names``, ``add_body(...)`` and ``set_thrust(body, force)``; the
+  same poses as the Rust library and the C API for the same scene and time.
 
 Conventions: SI units (metres, seconds), right-handed, +Y up, water at rest at y = 0. Answers
 depend only on the scene and ``t``, never on earlier calls. Bad input raises ``ValueError`` with
@@ -25,6 +29,6 @@ their progress and may stop them (``Cancelled``).
 """
 
 from ._spectrum import read_spectrum
-from ._swell import Cancelled, Water, __version__, render, stats
+from ._swell import Cancelled, Water, World, __version__, render, stats
 
-__all__ = ["Cancelled", "Water", "read_spectrum", "render", "stats", "__version__"]
+__all__ = ["Cancelled", "Water", "World", "read_spectrum", "render", "stats", "__version__"]

@@ -1,7 +1,7 @@
 """Type stubs of the compiled module (see swell/__init__.py for the overview)."""
 
 from os import PathLike
-from typing import Any, Callable, Dict, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -67,6 +67,55 @@ class Water:
         """Whether there is water above world (x, z): bool, broadcast shape (a bool for two
         scalars). False off a finite patch, where ``height_at`` answers NaN; True everywhere for
         a sea over the whole plane."""
+
+class World:
+    """A scene built and stepped in time: its water and its floating bodies (``[[body]]``), which
+    ride the water the scene draws, stepped at a fixed 120 Hz whatever times are asked.
+
+    ``advance(t)`` moves it to ``t`` (s); ``positions`` and ``rotations`` are then the bodies'
+    poses at ``t``. Calls on one object from several threads are serialised by a lock inside it.
+    """
+
+    @staticmethod
+    def from_toml(text: str) -> "World":
+        """Builds a scene's TOML text at t = 0 (relative paths relative to the working directory).
+        Raises ValueError with the CLI's message."""
+    @staticmethod
+    def from_file(path: Union[str, "PathLike[str]"]) -> "World":
+        """Reads a scene file (relative mesh and heightmap paths are relative to it) and builds it."""
+    def __len__(self) -> int:
+        """How many floating bodies the world has, added ones included."""
+    @property
+    def names(self) -> List[str]:
+        """The bodies' names in body order (an unnamed ``[[body]]`` is ``body<index>``)."""
+    def index(self, name: str) -> int:
+        """The index of the body named ``name``; KeyError if none is."""
+    @property
+    def time(self) -> float:
+        """The time (s) the world was last moved to: that of ``positions`` and ``rotations``."""
+    def advance(self, t: float) -> None:
+        """Moves the world to ``t`` (s, in [0, 1e7]): bodies step at 120 Hz up to ``t`` on the water
+        at each step's time; poses do not depend on the frame rate. A ``t`` before the world's time
+        replays from t = 0 (thrusts as they are now). ValueError for a bad ``t`` or a body that
+        left the finite numbers."""
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """Every body's centre of mass at ``time``, world metres: float64 ``(len, 3)``."""
+    @property
+    def rotations(self) -> npt.NDArray[np.float64]:
+        """Every body's rotation (body frame to world) at ``time``, unit quaternions (x, y, z, w):
+        float64 ``(len, 4)``."""
+    def add_body(self, toml: Optional[str] = None, **keys: Any) -> int:
+        """Adds a floating body from the text of one ``[[body]]`` table (header included) or from
+        its keys as keywords (``shape="box", size=[1.0, 0.5, 2.0], position=[0.0, 2.0, 0.0]``);
+        returns its index. Held still until the next body step after ``time``, then free.
+        ValueError naming the key as ``body[k]``; TypeError for a value no key takes."""
+    def set_thrust(self, body: Union[int, str], force: npt.ArrayLike) -> None:
+        """Sets the force (N, world x, y, z) applied at ``body``'s centre of mass from the next
+        step on, ``body`` its index or name; (0, 0, 0) removes it."""
+    @property
+    def thrusts(self) -> npt.NDArray[np.float64]:
+        """The thrusts set, N, world axes: float64 ``(len, 3)``."""
 
 def render(text: str, t: float = 0.0, width: Optional[int] = None, height: Optional[int] = None) -> npt.NDArray[np.uint8]:
     """Renders a scene's TOML text at time ``t`` (s) as ``swell render --time t`` does: a
