@@ -12,12 +12,14 @@ use eframe::egui::{self, Color32, Key, PointerButton, Rect, Sense, ViewportComma
 use swell::world::TerrainBody;
 use swell::{Error, Result};
 
+use crate::body_control::{push_direction, BodyDrop, DropKind, LiveBody, Push};
 use crate::camera_control::CameraRig;
 use crate::clock::Clock;
 use crate::editor::{FrameFailure, SceneEditor};
 use crate::frame::FrameKey;
 use crate::frame_stats::FrameStats;
 use crate::live_view::LiveView;
+use crate::panels::bodies::ClickMode;
 use crate::panels::files::{FileMessage, FileRequest};
 use crate::panels::{self, PanelOutput, PanelState};
 use crate::ViewerOptions;
@@ -58,6 +60,23 @@ pub const SHORTCUTS: &[(Key, Shortcut)] = &[
     (Key::R, Shortcut::ResetCamera),
 ];
 
+/// The keys that push the selected floating body while held, each with how much it pushes
+/// forward (along the camera's view laid flat) and to the right: I, J, K, L sit under the right
+/// hand like arrow keys, and none of them is a shortcut. Arrow keys themselves step the panel's
+/// focused number.
+pub const PUSH_KEYS: &[(Key, f32, f32)] =
+    &[(Key::I, 1.0, 0.0), (Key::K, -1.0, 0.0), (Key::J, 0.0, -1.0), (Key::L, 0.0, 1.0)];
+
+/// Whether a click in this frame's `events` was made with Shift held: the modifiers of the
+/// primary button's own press or release (Shift may be let go within the same frame), else
+/// those held now.
+pub fn shift_click(events: &[egui::Event], now: egui::Modifiers) -> bool {
+    now.shift
+        || events.iter().any(|e| {
+            matches!(e, egui::Event::PointerButton { button: PointerButton::Primary, modifiers, .. } if modifiers.shift)
+        })
+}
+
 /// Why a screenshot was asked for, sent back with the image by egui's screenshot callback.
 #[derive(Clone, Debug)]
 enum ScreenshotPurpose {
@@ -95,6 +114,12 @@ pub struct ViewerApp {
     rendered: u32,
     /// The last simulation or rendering error, shown in the status line.
     run_error: Option<String>,
+    /// A hint about the last click (what it did not do and how to), shown in the status line.
+    notice: Option<String>,
+    /// The view's rectangle in the last frame, points: where *Add* buttons drop (its centre).
+    view_rect: Option<Rect>,
+    /// The body the keys push this frame, by index (shown in the status line).
+    pushing: Option<usize>,
     /// Where the scripted run's outcome goes, read by [`crate::run`] after the window closes.
     outcome: Rc<RefCell<Option<Error>>>,
     /// Window screenshots: egui hands each to a callback once the backend has read the pixels
@@ -123,9 +148,45 @@ impl ViewerApp {
             last_shown: None,
             rendered: 0,
             run_error: None,
+            notice: None,
+            view_rect: None,
+            pushing: None,
             outcome,
             shots: channel(),
         })
+    }
+
+    /// The scene being shown (the last valid one): what is saved, and what scripted checks read.
+    pub fn scene(&self) -> &swell::scene::Scene {
+        self.editor.scene()
+    }
+
+    /// The simulation time, seconds (what the next frame is rendered at).
+    pub fn time(&self) -> f64 {
+        self.clock.time
+    }
+
+    /// Every floating body as the last frame received showed it, in scene order.
+    pub fn live_bodies(&self) -> &[LiveBody] {
+        &self.panels.bodies.live
+    }
+
+    /// The push the held keys give the selected body this frame, if any (none while a text field
+    /// has the keyboard, or without bodies).
+    fn push_from_keys(&self, ctx: &egui::Context) -> Option<Push> {
+        if ctx.egui_wants_keyboard_input() {
+            return None;
+        }
+        let (mut forward, mut right) = (0.0, 0.0);
+        for &(key, f, r) in PUSH_KEYS {
+            if ctx.input(|i| i.key_down(key)) {
+                forward += f;
+                right += r;
+            }
+        }
+        let scene = self.editor.scene();
+        let body = self.panels.bodies.pushed(scene.bodies.len())?;
+        Some(Push { body, direction: push_direction(&scene.camera, forward, right)? })
     }
 
     fn handle_keys(&mut self, ctx: &egui::Context) {
@@ -184,13 +245,18 @@ impl ViewerApp {
         }
         if response.clicked_by(PointerButton::Primary) {
             if let Some(pos) = response.interact_pointer_pos() {
-                self.drop_at_click(response.rect, pos);
+                let shift = ui.input(|i| shift_click(&i.events, i.modifiers));
+                let mode = if shift { ClickMode::Drop(DropKind::Crate) } else { self.panels.bodies.click };
+                match mode {
+                    ClickMode::Disturb => self.disturb_at_click(response.rect, pos),
+                    ClickMode::Drop(kind) => self.drop_body_at(kind, response.rect, pos),
+                }
             }
         }
     }
 
     /// A click on the water drops a disturbance there (models with state: the spring mesh).
-    fn drop_at_click(&mut self, rect: Rect, pos: egui::Pos2) {
+    fn disturb_at_click(&mut self, rect: Rect, pos: egui::Pos2) {
         let cam = self.editor.scene().camera;
         let local = pos - rect.min;
         let Some(at) = crate::picking::water_point(&cam, rect.width(), rect.height(), local.x, local.y) else {
@@ -204,6 +270,41 @@ impl ViewerApp {
             let d = crate::render_thread::Disturbance { x: at.x, z: at.y, depth: click.depth, radius: click.radius };
             self.view.disturb(d);
             self.run_error = None;
+            self.notice = None;
+        } else {
+            self.notice = Some("this water takes no dents: Shift+click drops a crate (Bodies: left click)".into());
+        }
+    }
+
+    /// Drops a body of `kind` where the ray through `pos` (in the view `rect`) meets the water:
+    /// the render thread's world adds it, and the frame brings its spec back to the scene.
+    fn drop_body_at(&mut self, kind: DropKind, rect: Rect, pos: egui::Pos2) {
+        let cam = self.editor.scene().camera;
+        let local = pos - rect.min;
+        match crate::picking::view_ray(&cam, rect.width(), rect.height(), local.x, local.y) {
+            Some(ray) if ray.direction.y < 0.0 => {
+                self.view.drop_body(BodyDrop { kind, ray });
+                self.notice = None;
+            }
+            _ => self.notice = Some(format!("no {} dropped: the click is above the horizon", kind.name())),
+        }
+    }
+
+    /// Takes what the last frame said about the bodies: each drop the render thread's world added
+    /// joins the editor's scenes (and becomes the pushed body), a refused one is reported in the
+    /// bodies panel; the bodies' places go to the panel.
+    fn handle_bodies(&mut self) {
+        for outcome in self.view.take_dropped() {
+            match outcome {
+                Ok(spec) => {
+                    let k = self.editor.body_dropped(spec);
+                    self.panels.bodies.dropped(k);
+                }
+                Err(e) => self.panels.bodies.message = Some(format!("drop refused: {e}")),
+            }
+        }
+        if let Some(bodies) = self.view.take_bodies() {
+            self.panels.bodies.live = bodies;
         }
     }
 
@@ -217,6 +318,13 @@ impl ViewerApp {
         }
         if out.reset_camera {
             self.move_camera(self.rig.home);
+        }
+        if let Some(kind) = out.drop {
+            // At the view's centre: the camera's line of sight.
+            match self.view_rect {
+                Some(rect) => self.drop_body_at(kind, rect, rect.center()),
+                None => self.notice = Some("no view to drop into yet".into()),
+            }
         }
         if let Some(request) = out.file {
             let heightmap = matches!(request, FileRequest::SaveHeightmap(_) | FileRequest::LoadHeightmap(_));
@@ -367,6 +475,14 @@ impl ViewerApp {
             self.clock.time,
             if self.clock.playing { "" } else { " (paused)" },
         );
+        let bodies = self.editor.scene().bodies.len();
+        if bodies > 0 {
+            s.push_str(&format!(" | {bodies} {}", if bodies == 1 { "body" } else { "bodies" }));
+        }
+        if let Some(b) = self.pushing.and_then(|i| self.editor.scene().bodies.get(i).map(|b| (i, b))) {
+            let name = if b.1.name.is_empty() { format!("body{}", b.0) } else { b.1.name.clone() };
+            s.push_str(&format!(" | pushing {name}"));
+        }
         let o = self.editor.scene().render;
         if o.wireframe || o.normals {
             s.push_str(" | overlays:");
@@ -414,6 +530,7 @@ impl ViewerApp {
             }
             None => {}
         }
+        self.handle_bodies();
         if size[0] == 0 || size[1] == 0 || !self.frame_budget_left() {
             return;
         }
@@ -456,6 +573,9 @@ impl eframe::App for ViewerApp {
         self.count_shown_frames();
         self.handle_screenshots(ctx);
         self.handle_keys(ctx);
+        let push = self.push_from_keys(ctx);
+        self.pushing = push.map(|p| p.body);
+        self.view.set_push(push);
         self.clock.tick(frame_dt.as_secs_f64());
 
         egui::Panel::bottom("status").exact_size(STATUS_HEIGHT).frame(panel_frame(ctx)).show(ui, |ui| {
@@ -463,6 +583,9 @@ impl eframe::App for ViewerApp {
                 ui.monospace(self.status_line());
                 if let Some(e) = &self.run_error {
                     ui.colored_label(ui.visuals().error_fg_color, e);
+                }
+                if let Some(n) = &self.notice {
+                    ui.weak(n);
                 }
             });
         });
@@ -478,6 +601,7 @@ impl eframe::App for ViewerApp {
         // llvmpipe; black is painted only until the first frame exists.
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let (rect, response) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
+            self.view_rect = Some(rect);
             self.handle_mouse(ui, &response);
             let ppp = ctx.pixels_per_point();
             let size = [(rect.width() * ppp).round() as u32, (rect.height() * ppp).round() as u32];
@@ -493,5 +617,35 @@ impl eframe::App for ViewerApp {
         if self.clock.playing || self.exit != ExitState::Running || self.options.exit_after_frames.is_some() {
             ctx.request_repaint();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn push_keys_are_not_shortcuts_and_shift_is_read_from_the_click_itself() {
+        for (key, f, r) in PUSH_KEYS {
+            assert!(!SHORTCUTS.iter().any(|(k, _)| k == key), "{key:?} is a shortcut too");
+            assert_eq!(f.abs() + r.abs(), 1.0, "{key:?} pushes one way");
+        }
+        let click = |shift: bool| egui::Event::PointerButton {
+            pos: egui::Pos2::ZERO,
+            button: PointerButton::Primary,
+            pressed: false,
+            modifiers: if shift { egui::Modifiers::SHIFT } else { egui::Modifiers::NONE },
+        };
+        // Shift let go within the same frame as the click still counts; none held, none counted.
+        assert!(shift_click(&[click(true)], egui::Modifiers::NONE));
+        assert!(!shift_click(&[click(false)], egui::Modifiers::NONE));
+        assert!(shift_click(&[], egui::Modifiers::SHIFT));
+        let middle = egui::Event::PointerButton {
+            pos: egui::Pos2::ZERO,
+            button: PointerButton::Middle,
+            pressed: true,
+            modifiers: egui::Modifiers::SHIFT,
+        };
+        assert!(!shift_click(&[middle, click(false)], egui::Modifiers::NONE));
     }
 }

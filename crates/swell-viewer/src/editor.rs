@@ -132,6 +132,18 @@ impl SceneEditor {
         takes
     }
 
+    /// The render thread's world added `spec` (a body dropped by a click, [`World::add_body`]):
+    /// the same spec is appended to the scene, the draft and the fallback scene, so that the next
+    /// scene sent holds the bodies that world holds (it is then not rebuilt) and a saved scene
+    /// replays the drop. Returns the body's index; a new revision, so the view gets the scene.
+    pub fn body_dropped(&mut self, spec: swell::body::BodySpec) -> usize {
+        self.scene.bodies.push(spec.clone());
+        self.shown.bodies.push(spec.clone());
+        self.draft.bodies.push(spec);
+        self.revision += 1;
+        self.scene.bodies.len() - 1
+    }
+
     /// Throws the draft away and shows the last valid scene again.
     pub fn revert(&mut self) {
         self.draft = self.scene.clone();
@@ -388,5 +400,35 @@ mod tests {
         let missing = e.load(&dir.path().join("missing.toml")).unwrap_err().to_string();
         assert!(missing.contains("missing.toml"), "{missing}");
         assert_eq!(e.scene(), &before);
+    }
+
+    #[test]
+    fn a_dropped_body_joins_every_scene_and_survives_refusals_and_saving() {
+        let mut e = sea();
+        e.frame_shown(0);
+        let mut spec =
+            swell::body::BodySpec::new(swell::body::BodyShape::Box, &[1.0; 3], glam::Vec3::new(0.0, 2.0, 0.0));
+        spec.name = "crate1".into();
+        spec.release_time = 3.5;
+        assert_eq!(e.body_dropped(spec.clone()), 0);
+        assert_eq!(e.revision(), 1);
+        assert_eq!((&e.scene().bodies, &e.draft.bodies), (&vec![spec.clone()], &vec![spec.clone()]));
+        // A pending refused draft keeps its own value and gets the body too.
+        set_first_amplitude(&mut e.draft, -1.0);
+        assert!(e.apply().is_err());
+        let second = swell::body::BodySpec { name: "crate2".into(), ..spec.clone() };
+        assert_eq!(e.body_dropped(second), 1);
+        assert_eq!(e.draft.bodies.len(), 2);
+        assert_eq!(first_amplitude(&e.draft), -1.0);
+        // A later commit the view cannot build falls back to a scene that still holds the bodies.
+        e.revert();
+        e.draft.bodies.pop();
+        e.apply().unwrap();
+        let err = swell::Error::invalid("test", "does not build");
+        assert_eq!(e.frame_failed(e.revision(), &err), FrameFailure::Refused);
+        assert_eq!(e.scene().bodies.len(), 2, "the fallback lost the dropped bodies");
+        // Saved, the drop is in the file with its release time.
+        let back = Scene::from_toml(&e.scene().to_toml(), "saved").unwrap();
+        assert_eq!(back.bodies[0], spec);
     }
 }

@@ -20,7 +20,8 @@
 //! | [`live_view`] | one frame in flight: collect the last, request the next |
 //! | [`render_thread`] | simulates and renders the next frame while the UI paints this one |
 //! | [`gl_view`] | upload and show the frame (one GL blit, no egui shader) |
-//! | [`picking`] | a click in the view to a point on the water (spring mesh disturbances) |
+//! | [`picking`] | a click in the view to a point on the water (spring mesh disturbances, drops) |
+//! | [`body_control`] | floating bodies: a click's drop, the keys' push, what a frame reports |
 //! | [`clock`], [`frame_stats`], [`files`] | time, timings, scene and PNG files |
 //!
 //! ## How a parameter change flows
@@ -37,6 +38,15 @@
 //!
 //! The mouse moves the camera through [`editor::SceneEditor::set_camera`], which updates both the
 //! draft and the scene, so the camera keeps working while a draft is refused.
+//!
+//! Floating bodies ([`body_control`]): a click that drops a crate does not edit the draft. The
+//! drop travels with the next frame's request to the render thread, whose world adds the body
+//! (`World::add_body`, released at the next body step); the frame brings the spec back and
+//! [`editor::SceneEditor::body_dropped`] appends it to the editor's scenes, so the scene sent next
+//! holds what the world holds and the world is not rebuilt (a rebuild replays the bodies from
+//! t = 0). The keys' push goes with every request and is not part of the scene. Body keys edited
+//! in the panel go through the draft like any key; in a scene with bodies a dragged value is
+//! committed when the drag ends ([`panels::commit_now`]).
 //!
 //! ## Adding a panel for a water model
 //!
@@ -65,6 +75,7 @@
 #![warn(missing_docs)]
 
 pub mod app;
+pub mod body_control;
 pub mod camera_control;
 pub mod clock;
 pub mod editor;
@@ -144,17 +155,14 @@ pub fn check_flags(screenshot: Option<&Path>, exit_after_frames: Option<u32>) ->
     Ok(())
 }
 
-/// Opens the viewer window and runs until it is closed (`q`, the window's close button, or the end
-/// of `exit_after_frames`). Errors: no display to open a window on, or a failed scripted
-/// screenshot.
-pub fn run(options: ViewerOptions) -> Result<()> {
-    check_flags(options.screenshot.as_deref(), options.exit_after_frames)?;
-    let outcome = Rc::new(RefCell::new(None));
-    let app = app::ViewerApp::new(options.clone(), outcome.clone())?;
-    let [vw, vh] = initial_view_size(&options.scene);
-    let native = eframe::NativeOptions {
+/// The window [`run`] opens: titled `title`, at the screen's top-left corner, sized for a view of
+/// `view` points beside the panel and above the status line. Public so that a program running
+/// [`app::ViewerApp`] itself (the real-window tests) gets the same window.
+pub fn native_options(title: &str, view: [f32; 2]) -> eframe::NativeOptions {
+    let [vw, vh] = view;
+    eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
-            .with_title(format!("swell: {}", options.source))
+            .with_title(title)
             .with_inner_size([vw + app::PANEL_WIDTH, vh + app::STATUS_HEIGHT])
             .with_position([0.0, 0.0]),
         // The view is blitted, not shaded (gl_view.rs); egui's dithering only touches the panel.
@@ -165,7 +173,17 @@ pub fn run(options: ViewerOptions) -> Result<()> {
         depth_buffer: 0,
         stencil_buffer: 0,
         ..Default::default()
-    };
+    }
+}
+
+/// Opens the viewer window and runs until it is closed (`q`, the window's close button, or the end
+/// of `exit_after_frames`). Errors: no display to open a window on, or a failed scripted
+/// screenshot.
+pub fn run(options: ViewerOptions) -> Result<()> {
+    check_flags(options.screenshot.as_deref(), options.exit_after_frames)?;
+    let outcome = Rc::new(RefCell::new(None));
+    let app = app::ViewerApp::new(options.clone(), outcome.clone())?;
+    let native = native_options(&format!("swell: {}", options.source), initial_view_size(&options.scene));
     eframe::run_native("swell", native, Box::new(move |_cc| Ok(Box::new(app)))).map_err(|e| {
         Error::invalid("window", format!("cannot run the viewer window ({e}); is DISPLAY set to a running X server?"))
     })?;

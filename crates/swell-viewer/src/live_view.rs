@@ -12,6 +12,7 @@ use eframe::egui::{self, Rect};
 use swell::scene::Scene;
 use swell::{Error, Result};
 
+use crate::body_control::{BodyDrop, LiveBody, Push};
 use crate::frame::{FrameKey, StageTimes};
 use crate::gl_view::{GlView, ShownFrame};
 use crate::render_thread::{Disturbance, RenderThread, Request};
@@ -30,6 +31,14 @@ pub struct LiveView {
     in_flight: bool,
     shown: bool,
     disturbances: Vec<Disturbance>,
+    /// Bodies to drop with the next request.
+    drops: Vec<BodyDrop>,
+    /// The push to send with every request until changed.
+    push: Option<Push>,
+    /// The bodies of the last frame received, until taken.
+    bodies: Option<Vec<LiveBody>>,
+    /// What became of the drops of the frames received, until taken.
+    dropped: Vec<std::result::Result<swell::body::BodySpec, String>>,
 }
 
 impl Default for LiveView {
@@ -50,12 +59,17 @@ impl LiveView {
             in_flight: false,
             shown: false,
             disturbances: Vec::new(),
+            drops: Vec::new(),
+            push: None,
+            bodies: None,
+            dropped: Vec::new(),
         }
     }
 
-    /// Whether a frame for `key` would differ from the last one asked for.
+    /// Whether a frame for `key` would differ from the last one asked for: another key, or a drop
+    /// waiting to be made (a paused view renders again to show it).
     pub fn is_stale(&self, key: &FrameKey) -> bool {
-        self.requested.as_ref() != Some(key)
+        self.requested.as_ref() != Some(key) || !self.drops.is_empty()
     }
 
     /// Whether a frame is being rendered.
@@ -81,6 +95,8 @@ impl LiveView {
             revision,
             match outcome {
                 Ok(mut frame) => {
+                    self.bodies = Some(std::mem::take(&mut frame.bodies));
+                    self.dropped.append(&mut frame.dropped);
                     let mut slot = self.screen.lock();
                     // The frame goes on screen; the one it replaces (uploaded at the last paint)
                     // becomes the spare buffer of the next request.
@@ -113,6 +129,8 @@ impl LiveView {
             key,
             scene,
             disturbances: std::mem::take(&mut self.disturbances),
+            drops: std::mem::take(&mut self.drops),
+            push: self.push,
             threads,
             buffer: std::mem::take(&mut self.spare),
         };
@@ -140,6 +158,28 @@ impl LiveView {
     /// Forwards a click's dent to the render thread's world (applied before the next frame).
     pub fn disturb(&mut self, d: Disturbance) {
         self.disturbances.push(d);
+    }
+
+    /// Forwards a body to drop to the render thread's world (added before the next frame); what
+    /// became of it comes back through [`LiveView::take_dropped`].
+    pub fn drop_body(&mut self, d: BodyDrop) {
+        self.drops.push(d);
+    }
+
+    /// Sets the push every following request carries (`None`: no body pushed).
+    pub fn set_push(&mut self, push: Option<Push>) {
+        self.push = push;
+    }
+
+    /// The bodies of the frame received since the last call, if one was.
+    pub fn take_bodies(&mut self) -> Option<Vec<LiveBody>> {
+        self.bodies.take()
+    }
+
+    /// What became of the drops of the frames received since the last call, oldest first: the
+    /// spec the render thread's world added, or why it refused it.
+    pub fn take_dropped(&mut self) -> Vec<std::result::Result<swell::body::BodySpec, String>> {
+        std::mem::take(&mut self.dropped)
     }
 
     /// Whether a frame has been received (and can be painted).

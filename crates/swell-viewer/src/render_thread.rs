@@ -6,8 +6,10 @@
 //! not. The thread owns the [`Renderer`], its rayon pool and its own [`World`], built from the
 //! scene the UI sends whenever the editor's revision changes: rebuilt when `[water]` or
 //! `[terrain]` changed (as the editor does), otherwise only its scene is swapped. Clicks on the
-//! water are forwarded as [`Disturbance`]s, so the spring mesh's state lives here. The UI sees
-//! each frame one frame late.
+//! water are forwarded as [`Disturbance`]s, so the spring mesh's state lives here, and as
+//! [`BodyDrop`]s, which add a body to this world; the frame hands back the specs it added (for the
+//! editor's scene) and every body's place ([`LiveBody`]). The push the keys give a body comes with
+//! every request ([`Push`]). The UI sees each frame one frame late.
 
 use std::sync::mpsc::{channel, Receiver, Sender};
 use std::thread::JoinHandle;
@@ -18,6 +20,7 @@ use swell::scene::{Scene, MAX_IMAGE_SIDE};
 use swell::world::World;
 use swell::{Error, Result};
 
+use crate::body_control::{apply_push, drop_into, live_bodies, BodyDrop, LiveBody, Push};
 use crate::frame::{FrameKey, StageTimes};
 
 /// A dent dropped on the water at world (x, z): `depth` and `radius` in metres.
@@ -41,6 +44,10 @@ pub struct Request {
     pub scene: Option<Box<Scene>>,
     /// Clicks on the water since the last request, applied before the update.
     pub disturbances: Vec<Disturbance>,
+    /// Bodies dropped since the last request, added before the update.
+    pub drops: Vec<BodyDrop>,
+    /// The push the keys give a body during this frame's update (none: every push taken away).
+    pub push: Option<Push>,
     /// Worker threads of the render (`render.threads`, 0 = one per core).
     pub threads: u32,
     /// A buffer to encode into (recycled: the frame shown before the last one).
@@ -57,6 +64,19 @@ pub struct Frame {
     pub size: [u32; 2],
     /// Simulation and render times (upload is the UI's).
     pub times: StageTimes,
+    /// Every floating body at the frame's time, in scene order.
+    pub bodies: Vec<LiveBody>,
+    /// What became of each of the request's drops, in order: the body's spec as the world's scene
+    /// now holds it, or why it was refused.
+    pub dropped: Vec<std::result::Result<swell::body::BodySpec, String>>,
+}
+
+/// What a frame found besides its pixels.
+struct FrameReport {
+    size: [u32; 2],
+    times: StageTimes,
+    bodies: Vec<LiveBody>,
+    dropped: Vec<std::result::Result<swell::body::BodySpec, String>>,
 }
 
 /// The answer to a request: the frame, or the error with the request's buffer back.
@@ -118,22 +138,18 @@ struct Worker {
 }
 
 impl Worker {
-    fn frame(&mut self, r: Request) -> Outcome {
-        let mut buffer = r.buffer;
-        match self.frame_into(r.key, r.scene, &r.disturbances, r.threads, &mut buffer) {
-            Ok((size, times)) => Ok(Frame { key: r.key, pixels: buffer, size, times }),
+    fn frame(&mut self, mut r: Request) -> Outcome {
+        let mut buffer = std::mem::take(&mut r.buffer);
+        match self.frame_into(r, &mut buffer) {
+            Ok((key, f)) => {
+                Ok(Frame { key, pixels: buffer, size: f.size, times: f.times, bodies: f.bodies, dropped: f.dropped })
+            }
             Err(e) => Err((e, buffer)),
         }
     }
 
-    fn frame_into(
-        &mut self,
-        key: FrameKey,
-        scene: Option<Box<Scene>>,
-        disturbances: &[Disturbance],
-        threads: u32,
-        rgba: &mut Vec<u8>,
-    ) -> Result<([u32; 2], StageTimes)> {
+    fn frame_into(&mut self, r: Request, rgba: &mut Vec<u8>) -> Result<(FrameKey, FrameReport)> {
+        let Request { key, scene, disturbances, drops, push, threads, buffer: _ } = r;
         let [w, h] = key.size.map(|s| s.clamp(1, MAX_IMAGE_SIDE));
         if self.pool.as_ref().map(|(n, _)| *n) != Some(threads) {
             let pool = rayon::ThreadPoolBuilder::new()
@@ -146,16 +162,25 @@ impl Worker {
         let pool = &self.pool.as_ref().expect("built above").1;
         let (world_slot, renderer) = (&mut self.world, &mut self.renderer);
         let mut times = StageTimes::default();
+        let mut dropped = Vec::with_capacity(drops.len());
+        let mut bodies = Vec::new();
         pool.install(|| -> Result<()> {
             let t0 = Instant::now();
             if let Some(scene) = scene {
                 follow(world_slot, *scene)?;
             }
             let world = world_slot.as_mut().ok_or_else(|| Error::invalid("view", "no scene received yet"))?;
-            for d in disturbances {
+            for d in &disturbances {
                 world.disturb_water(d.x, d.z, d.depth, d.radius)?;
             }
+            // Added after the scene is followed, so the scene sent does not hold them yet and the
+            // world is not rebuilt without them; the editor then appends the same specs.
+            for d in &drops {
+                dropped.push(drop_into(world, d).map_err(|e| swell::error::printable(&e.to_string())));
+            }
+            apply_push(world, push);
             world.update(key.time)?;
+            bodies = live_bodies(world);
             let t1 = Instant::now();
             let r = world.scene.render;
             renderer.render_size(world, w, h).encode_rgba8(&r.display_encoding(), rgba);
@@ -163,7 +188,7 @@ impl Worker {
             times.render = t1.elapsed();
             Ok(())
         })?;
-        Ok(([w, h], times))
+        Ok((key, FrameReport { size: [w, h], times, bodies, dropped }))
     }
 }
 
@@ -190,6 +215,8 @@ mod tests {
             key: FrameKey { revision, time, size: SIZE },
             scene: scene.map(|s| Box::new(s.clone())),
             disturbances,
+            drops: Vec::new(),
+            push: None,
             threads: 2,
             buffer: Vec::new(),
         }
@@ -248,5 +275,40 @@ mod tests {
             Err((_, buffer)) => assert_eq!(buffer, vec![7; 12]),
             Ok(_) => panic!("a negative radius was accepted"),
         }
+    }
+
+    #[test]
+    fn a_drop_joins_the_thread_s_world_and_the_scene_holding_it_does_not_rebuild_it() {
+        use crate::body_control::{BodyDrop, DropKind, Push};
+        use crate::picking::Ray;
+        let t = RenderThread::start(|| {}).unwrap();
+        let mut scene = preset("sea").unwrap();
+        scene.water.as_mut().unwrap().surface.cells = [32, 32];
+        let f = frame(&t, request(Some(&scene), 0, 1.0, vec![]));
+        assert!(f.bodies.is_empty() && f.dropped.is_empty());
+        let eye = scene.camera.eye;
+        let ray = Ray { origin: eye, direction: scene.camera.target - eye };
+        let drop = BodyDrop { kind: DropKind::Crate, ray };
+        let f = frame(&t, Request { drops: vec![drop], ..request(None, 0, 1.05, vec![]) });
+        let spec = match &f.dropped[..] {
+            [Ok(spec)] => spec.clone(),
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(f.bodies.len(), 1);
+        assert!(f.bodies[0].position.y > spec.position.y - 0.05, "it only just started falling");
+        // The editor's scene with the body, sent back: the world keeps the body's motion (a
+        // rebuild would replay it from t = 0 to the same place, so push it first to tell).
+        let pushed = Push { body: 0, direction: glam::Vec2::X };
+        for time in [1.1, 1.3, 1.5, 1.7] {
+            frame(&t, Request { push: Some(pushed), ..request(None, 0, time, vec![]) });
+        }
+        let before = frame(&t, request(None, 0, 1.8, vec![])).bodies[0];
+        scene.bodies.push(spec);
+        let after = frame(&t, request(Some(&scene), 1, 1.8, vec![])).bodies[0];
+        assert_eq!(before, after, "the world was rebuilt: the push's effect is gone");
+        let mut replayed = World::new(scene.clone()).unwrap();
+        replayed.update(1.8).unwrap();
+        let unpushed = replayed.body_poses()[0].position.as_vec3();
+        assert!(after.position.x > unpushed.x + 0.05, "pushed {} vs replayed {}", after.position, unpushed);
     }
 }

@@ -53,10 +53,24 @@ pub fn count_in_steps(ui: &mut Ui, label: &str, value: &mut u32, step: u32, spee
 
 /// Three drag values for a 3-vector, without a label or row end (for use inside tables).
 pub fn vec3_inline(ui: &mut Ui, v: &mut Vec3, speed: f64) -> bool {
+    vec3_parts_inline(ui, v, speed, ["x ", "y ", "z "], "")
+}
+
+/// Three drag values for a 3-vector whose parts have their own names (`yaw`, `pitch`, `roll`) and
+/// a unit suffix, without a label or row end.
+pub fn vec3_parts_inline(ui: &mut Ui, v: &mut Vec3, speed: f64, names: [&str; 3], suffix: &str) -> bool {
     let mut changed = false;
-    for (c, name) in [(&mut v.x, "x "), (&mut v.y, "y "), (&mut v.z, "z ")] {
-        changed |= ui.add(DragValue::new(c).speed(speed).prefix(name).max_decimals(4)).changed();
+    for (c, name) in [&mut v.x, &mut v.y, &mut v.z].into_iter().zip(names) {
+        changed |= ui.add(DragValue::new(c).speed(speed).prefix(name).suffix(suffix).max_decimals(4)).changed();
     }
+    changed
+}
+
+/// A labelled 3-vector with named parts and a unit suffix ([`vec3_parts_inline`]).
+pub fn vec3_parts(ui: &mut Ui, label: &str, v: &mut Vec3, speed: f64, names: [&str; 3], suffix: &str) -> bool {
+    ui.label(label);
+    let changed = ui.horizontal(|ui| vec3_parts_inline(ui, v, speed, names, suffix)).inner;
+    ui.end_row();
     changed
 }
 
@@ -128,13 +142,25 @@ pub fn rgb_numbers(ui: &mut Ui, label: &str, v: &mut Vec3, speed: f64, suffix: &
 /// A labelled optional 3-vector: a check box (`None` when off) and, when on, its components.
 /// Turning it on starts from `default`.
 pub fn optional_vec3(ui: &mut Ui, label: &str, value: &mut Option<Vec3>, default: Vec3, speed: f64) -> bool {
+    optional_vec3_from(ui, label, value, || default, speed)
+}
+
+/// [`optional_vec3`] whose starting value is computed only when the box is ticked: a default that
+/// costs something to find (a body's inertia, from its hull) is not computed every frame.
+pub fn optional_vec3_from(
+    ui: &mut Ui,
+    label: &str,
+    value: &mut Option<Vec3>,
+    default: impl FnOnce() -> Vec3,
+    speed: f64,
+) -> bool {
     ui.label(label);
     let changed = ui
         .horizontal(|ui| {
             let mut on = value.is_some();
             let mut changed = false;
             if ui.checkbox(&mut on, "").changed() {
-                *value = on.then_some(default);
+                *value = on.then(default);
                 changed = true;
             }
             if let Some(v) = value {
@@ -328,6 +354,7 @@ mod tests {
         check::<swell::scene::SkyModel>();
         check::<swell::scene::GlitterModel>();
         check::<swell::math::ToneCurve>();
+        check::<swell::body::BodyShape>();
     }
 
     /// Arrow presses (one per frame, as a held key sends them) move a count in steps by whole

@@ -123,6 +123,13 @@ pub(crate) mod format {
             walk("water", &w.model, &mut out);
             walk("water", &w.surface, &mut out);
             walk("water.material", &w.material, &mut out);
+            // Not a serde field: the file writes it only when it is not sea water's.
+            let density = "water.density".to_owned();
+            if w.density == swell::body::SEA_WATER_DENSITY {
+                out.left_out.insert(density);
+            } else {
+                out.written.insert(density);
+            }
         }
         if let Some(t) = &scene.terrain {
             walk("terrain", &t.generator, &mut out);
@@ -131,6 +138,12 @@ pub(crate) mod format {
             walk("terrain.transform", &t.transform, &mut out);
             walk("terrain.material", &t.material, &mut out);
             walk("terrain.far_land", &t.far_land, &mut out);
+        }
+        // `[[body]]`: the file leaves the list out when it is empty.
+        if scene.bodies.is_empty() {
+            out.left_out.insert("body".to_owned());
+        } else {
+            walk("body", &scene.bodies, &mut out);
         }
         out
     }
@@ -422,6 +435,20 @@ mod tests {
         assert_eq!(keys.written, key_paths(&toml::from_str(&scene.to_toml()).unwrap()));
         assert!(keys.written.contains("water.extent") && keys.written.contains("water.lod.levels"));
         assert!(keys.left_out.contains("water.lod.spacing") && !keys.left_out.contains("water.lod"));
+        // Bodies and the water's density: left out while absent or at their defaults.
+        assert!(keys.left_out.contains("body") && keys.left_out.contains("water.density"));
+        scene.water.as_mut().unwrap().density = 1000.0;
+        let mut crate_ = swell::body::BodySpec::new(swell::body::BodyShape::Box, &[1.0; 3], glam::Vec3::ZERO);
+        crate_.mass = Some(300.0);
+        scene.bodies.push(crate_);
+        let keys = format::scene_keys(&scene);
+        assert_eq!(keys.written, key_paths(&toml::from_str(&scene.to_toml()).unwrap()));
+        for written in ["water.density", "body[].shape", "body[].size", "body[].mass", "body[].position"] {
+            assert!(keys.written.contains(written), "{written} in {:?}", keys.written);
+        }
+        for left_out in ["body[].density", "body[].path", "body[].release_time", "body[].friction"] {
+            assert!(keys.left_out.contains(left_out), "{left_out} in {:?}", keys.left_out);
+        }
         let declared: BTreeSet<String> = ["water.lod.levels".to_owned()].into();
         assert!(format::SceneKeys::covered(&declared, "water.lod"));
         assert!(!format::SceneKeys::covered(&declared, "water.lo"));

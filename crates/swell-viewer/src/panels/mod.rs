@@ -18,6 +18,7 @@
 //! unit-tested without a window.
 
 pub mod airy;
+pub mod bodies;
 pub mod camera;
 pub mod dispersion;
 pub mod fft_ocean;
@@ -72,6 +73,29 @@ pub struct PanelState {
     pub click_drop: springs::ClickDrop,
     /// Transform steps, heightmap path and the last refusal of the terrain panel.
     pub terrain: terrain::TerrainForm,
+    /// What a click on the water does, the body the keys push, the bodies' last places.
+    pub bodies: bodies::BodiesForm,
+    /// An edit dragged out in a scene with bodies, waiting for the drag's end to be committed
+    /// ([`commit_now`]).
+    pub commit_after_drag: bool,
+}
+
+/// Whether the panel's edits are committed this frame, given whether the draft `changed`, a drag
+/// is under way and the scene has bodies; `held` remembers an edit waiting for the drag's end.
+///
+/// Committing a scene with bodies replays them from t = 0 (the world is rebuilt and every 1/120 s
+/// body step moves the water model: 3.6 s at t = 10 s on the FFT sea), so a value dragged out is
+/// committed once, when the drag ends, instead of every frame of the drag. Without bodies every
+/// frame of a drag commits, as before.
+pub fn commit_now(changed: bool, dragging: bool, has_bodies: bool, held: &mut bool) -> bool {
+    // Once held, an edit waits for the drag's end whatever else happens meanwhile.
+    if dragging && (has_bodies && changed || *held) {
+        *held = true;
+        return false;
+    }
+    let now = changed || *held;
+    *held = false;
+    now
 }
 
 /// What the panel asks of the viewer this frame.
@@ -85,10 +109,12 @@ pub struct PanelOutput {
     pub reset_camera: bool,
     /// A file operation was asked for.
     pub file: Option<files::FileRequest>,
+    /// *Add crate* or *Add buoy* was clicked: drop one at the view's centre.
+    pub drop: Option<crate::body_control::DropKind>,
 }
 
-/// Shows every section, in the order a user works: files, time, water, lights, sky, render,
-/// camera. `error` is why the draft was last refused, shown at the top.
+/// Shows every section, in the order a user works: files, time, water, terrain, bodies, lights,
+/// sky, render, camera. `error` is why the draft was last refused, shown at the top.
 pub fn show_all(
     ui: &mut Ui,
     draft: &mut Scene,
@@ -113,6 +139,11 @@ pub fn show_all(
         out.scene_changed |= changed;
         out.file = out.file.take().or(request);
     });
+    section(ui, "Bodies", true, |ui| {
+        let (changed, drop) = bodies::show(ui, &mut draft.bodies, &mut state.bodies);
+        out.scene_changed |= changed;
+        out.drop = drop;
+    });
     section(ui, "Lights", false, |ui| out.scene_changed |= lights::show(ui, &mut draft.lights));
     section(ui, "Sky", false, |ui| out.scene_changed |= sky::show(ui, &mut draft.sky));
     section(ui, "Render", true, |ui| {
@@ -123,6 +154,8 @@ pub fn show_all(
         out.scene_changed |= changed;
         out.reset_camera = request.reset;
     });
+    let dragging = ui.ctx().dragged_id().is_some();
+    out.scene_changed = commit_now(out.scene_changed, dragging, !draft.bodies.is_empty(), &mut state.commit_after_drag);
     out
 }
 
@@ -234,6 +267,31 @@ mod tests {
         w.surface.lod = swell::scene::LodSettings { levels: 6, ring_cells: 64, spacing: Some(0.5) };
     }
 
+    /// Floating bodies that together set every `[[body]]` key: density and mass are exclusive, and
+    /// only a mesh has a path (named, not read, by the panel).
+    fn bodies_with_every_key() -> Vec<swell::body::BodySpec> {
+        use glam::Vec3;
+        use swell::body::{BodyShape, BodySpec};
+        let mut a = BodySpec::new(BodyShape::Box, &[1.0, 0.5, 2.0], Vec3::new(1.0, 0.5, -2.0));
+        a.name = "crate".into();
+        a.density = Some(400.0);
+        a.center_of_mass = Some(Vec3::new(0.0, -0.1, 0.0));
+        a.inertia = Some(Vec3::new(50.0, 60.0, 20.0));
+        a.rotation_deg = Vec3::new(20.0, 5.0, -5.0);
+        a.velocity = Vec3::new(0.5, -1.0, 0.0);
+        a.angular_velocity = Vec3::new(0.0, 0.3, 0.0);
+        a.release_time = 2.5;
+        a.drag = 1.5;
+        a.linear_drag = 30.0;
+        a.friction = 0.4;
+        a.color = Vec3::new(0.7, 0.2, 0.1);
+        let mut b = BodySpec::new(BodyShape::Sphere, &[0.4], Vec3::new(-3.0, 1.0, 0.0));
+        b.mass = Some(40.0);
+        let mut c = BodySpec::new(BodyShape::Mesh, &[], Vec3::new(4.0, 1.0, 3.0));
+        c.path = Some("hull.obj".into());
+        vec![a, b, c]
+    }
+
     /// One scene per water model (two for the FFT ocean: swell's keys and Blender's) in which every
     /// key of the scene format is set: both kinds of light, the sun's own direction, a power-law
     /// gamma, a flat bottom and a texture, a terrain with size and extent, the models' optional keys.
@@ -247,6 +305,7 @@ mod tests {
         t.extent = Some(swell::scene::DEFAULT_TERRAIN_EXTENT);
         t.far_land = Some(swell::terrain::FarLandParams::default());
         base.terrain = Some(t);
+        base.bodies = bodies_with_every_key();
         let depth = "dispersion = { type = 'finite-depth', depth = 12.0 }\n";
         let listed = "waves = [{ amplitude = 0.2, wavelength = 20.0, direction = [1.0, 0.0], phase = 0.5 }]\n";
         let models: Vec<(&str, String)> = vec![
@@ -276,6 +335,8 @@ mod tests {
             .map(|(m, extra)| {
                 let mut s = base.clone();
                 let mut w = water_with(m, &extra);
+                // Fresh water: written to the file only when it is not sea water.
+                w.density = 1000.0;
                 w.material.bottom_depth = Some(water::DEFAULT_BOTTOM_DEPTH_M);
                 w.material.texture = Some("procedural".into());
                 w.material.foam_texture = Some("procedural".into());
@@ -474,6 +535,29 @@ mod tests {
             let unreached: Vec<_> = numeric.difference(&changed).collect();
             assert!(unreached.is_empty(), "{label}: no widget the keyboard reaches changes {unreached:?}");
         }
+    }
+
+    #[test]
+    fn with_bodies_a_dragged_edit_commits_once_when_the_drag_ends() {
+        let mut held = false;
+        // Bodies: frames of a drag hold the edit, the frame after it commits it once.
+        assert!(!commit_now(true, true, true, &mut held));
+        assert!(!commit_now(false, true, true, &mut held));
+        assert!(!commit_now(true, true, true, &mut held));
+        assert!(held);
+        assert!(commit_now(false, false, true, &mut held));
+        assert!(!held);
+        assert!(!commit_now(false, false, true, &mut held), "committed twice");
+        // Typed values and clicks commit at once; without bodies so does every frame of a drag.
+        assert!(commit_now(true, false, true, &mut held));
+        assert!(commit_now(true, true, false, &mut held));
+        assert!(!commit_now(false, true, false, &mut held));
+        // A drag of something else (the camera) with nothing held commits nothing.
+        assert!(!commit_now(false, true, true, &mut held) && !held);
+        // A held edit is kept to the drag's end even if the bodies went meanwhile.
+        assert!(!commit_now(true, true, true, &mut held));
+        assert!(!commit_now(false, true, false, &mut held));
+        assert!(commit_now(false, false, false, &mut held));
     }
 
     #[test]

@@ -298,6 +298,12 @@ pub fn show(ui: &mut Ui, water: &mut Option<WaterSpec>, forms: &mut PanelState, 
     let mut changed = show_model_menu(ui, water, forms);
     let Some(w) = water else { return changed };
     changed |= show_patch(ui, &mut w.surface);
+    fields::grid("water-density").show(ui, |ui| {
+        let (lo, hi) = swell::body::WATER_DENSITY_RANGE;
+        let label = format!("density [{lo}, {hi}] (floats bodies)");
+        changed |= fields::number(ui, &label, &mut w.density, 1.0, " kg/m³");
+    });
+    keys::edits("water", &["density"]);
     // With terrain, a model defined everywhere is unbounded or a patch by the terrain's border.
     let auto = WaterExtent::default_for(&w.model, false);
     let auto = (!has_terrain || auto == WaterExtent::Patch).then_some(auto);
