@@ -253,3 +253,19 @@ fn a_body_dropped_into_a_running_world_replays_from_its_saved_scene() {
     }
     assert!(live.body_poses()[0].position.x > before.x + 0.5, "{} -> {}", before, live.body_poses()[0].position);
 }
+
+#[test]
+fn a_body_added_to_a_world_without_bodies_joins_at_the_world_s_time() {
+    let mut without = Scene::from_toml(SEA, "test").unwrap();
+    without.bodies.clear();
+    let mut w = World::new(without).unwrap();
+    for k in 0..=120 {
+        w.update(f64::from(k) / 60.0).unwrap();
+    }
+    let spec = swell::body::BodySpec::new(swell::body::BodyShape::Sphere, &[0.3], glam::Vec3::new(0.0, 2.0, 0.0));
+    w.add_body(spec).unwrap();
+    // Released at the step after 2 s, and posed at once.
+    assert!((w.scene.bodies[0].release_time - 241.0 / 120.0).abs() < 1e-12, "{}", w.scene.bodies[0].release_time);
+    assert_eq!(w.body_poses().len(), 1);
+    assert_eq!(w.body_poses()[0].position, glam::DVec3::new(0.0, 2.0, 0.0));
+}

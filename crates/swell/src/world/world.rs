@@ -183,10 +183,10 @@ impl World {
     /// water model at that step's time; then the model moves to `t` and the bodies' poses at `t`
     /// are taken ([`World::body_poses`]).
     pub fn advance(&mut self, t: f64) -> Result<()> {
-        if !self.bodies.is_empty() {
-            let mut env = WorldEnvironment { water: self.water.as_mut(), terrain: self.terrain.as_ref() };
-            self.bodies.advance(t, &mut env)?;
-        }
+        // Without bodies this only counts the steps (no model is advanced), so that a body added
+        // later joins at this time's step.
+        let mut env = WorldEnvironment { water: self.water.as_mut(), terrain: self.terrain.as_ref() };
+        self.bodies.advance(t, &mut env)?;
         if let Some(w) = &mut self.water {
             w.model.advance(t)?;
         }
@@ -215,6 +215,10 @@ impl World {
         check_above_ground(self.terrain.as_ref(), &body, k)?;
         self.bodies.push(body)?;
         self.scene.bodies.push(spec);
+        // The new body hangs at its initial pose until the next step: it has a pose now.
+        if let Some(poses) = self.bodies.poses_at(self.time) {
+            self.body_poses = poses;
+        }
         Ok(k)
     }
 
