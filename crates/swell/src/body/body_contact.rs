@@ -11,12 +11,9 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
+use super::ground_contact::ContactSpring;
 use super::rigid_body::Load;
 use super::FloatingBody;
-
-/// Natural frequency (Hz) of two bodies pressed together on their contact springs; as for the
-/// ground ([`super::ground_contact::CONTACT_HZ`]), well below the 60 Hz the 120 Hz step resolves.
-pub const BODY_CONTACT_HZ: f64 = 5.0;
 
 /// A hull's face planes in its body frame, merged where faces share a plane (a box's split faces),
 /// and the points of it that are tested against other hulls.
@@ -122,24 +119,19 @@ fn pair_loads(a: &FloatingBody, b: &FloatingBody, dt: f64) -> (Load, Load) {
     if inside.is_empty() {
         return (on_a, on_b);
     }
-    let count = inside.len() as f64;
-    // The pair's reduced mass sets the springs, shared among the touching vertices.
+    // The pair's reduced mass sets the springs (the ground's law and frequency,
+    // [`super::ground_contact::CONTACT_HZ`]), shared among the touching points.
     let (ma, mb) = (a.material.mass, b.material.mass);
-    let m = ma * mb / (ma + mb);
-    let omega = std::f64::consts::TAU * BODY_CONTACT_HZ;
-    let (k, c) = (m * omega * omega / count, 2.0 * m * omega / count);
-    let mu = 0.5 * (a.material.friction + b.material.friction);
+    let spring = ContactSpring {
+        mass: ma * mb / (ma + mb),
+        points: inside.len() as f64,
+        friction: 0.5 * (a.material.friction + b.material.friction),
+        dt,
+    };
     for (point, normal, depth) in inside {
         let (ra, rb) = (point - sa.position, point - sb.position);
         let v = (sa.velocity + sa.angular_velocity.cross(ra)) - (sb.velocity + sb.angular_velocity.cross(rb));
-        let vn = v.dot(normal);
-        let push = (k * depth - c * vn).max(0.0);
-        let mut f = normal * push;
-        let slide = v - normal * vn;
-        let speed = slide.length();
-        if speed > 0.0 {
-            f -= slide / speed * (mu * push).min(m * speed / (count * dt));
-        }
+        let f = spring.force(v, normal, depth);
         on_a.force += f;
         on_a.torque += ra.cross(f);
         on_b.force -= f;

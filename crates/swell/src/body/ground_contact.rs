@@ -51,24 +51,48 @@ pub(super) fn ground_load<E: BodyEnvironment + ?Sized>(body: &FloatingBody, env:
     }
     let n = touching.len() as f64;
     let m = body.material.mass;
-    let omega = std::f64::consts::TAU * CONTACT_HZ;
-    let (k, c) = (m * omega * omega / n, 2.0 * m * omega / n);
+    let spring = ContactSpring { mass: m, points: n, friction: body.material.friction, dt };
     for (point, depth, normal) in touching {
         let r = point - s.position;
         let v = s.velocity + s.angular_velocity.cross(r);
-        let vn = v.dot(normal);
-        let push = (k * depth * normal.y - c * vn).max(0.0);
-        let mut f = normal * push;
-        // Friction opposes sliding, at most μ times the push and never more than stops the
-        // vertex's share of the body within the step.
-        let slide = v - normal * vn;
-        let speed = slide.length();
-        if speed > 0.0 {
-            let most = (body.material.friction * push).min(m * speed / (n * dt));
-            f -= slide / speed * most;
-        }
+        // The vertical penetration, measured along the ground's normal.
+        let f = spring.force(v, normal, depth * normal.y);
         load.force += f;
         load.torque += r.cross(f);
     }
     (load, n as u32)
+}
+
+/// A stiff, critically damped contact spring with Coulomb friction, its stiffness set by a mass
+/// (kg, a body's or a pair's reduced mass) at [`CONTACT_HZ`] and shared among the `points`
+/// touching at once; what the ground and body contacts both push with.
+pub(super) struct ContactSpring {
+    /// The mass the springs hold, kg.
+    pub mass: f64,
+    /// How many points touch (>= 1): each takes its share of the stiffness.
+    pub points: f64,
+    /// Coulomb friction coefficient.
+    pub friction: f64,
+    /// The step the force acts over, s.
+    pub dt: f64,
+}
+
+impl ContactSpring {
+    /// The force (N) on a point moving at `v` (m/s, relative to what it touches) that lies
+    /// `depth` m inside it across the unit `normal` (pointing out): the spring and its damping
+    /// along the normal, never pulling, and friction opposing the sliding, at most μ times the
+    /// push and never more than stops the point's share of the mass within the step.
+    pub fn force(&self, v: DVec3, normal: DVec3, depth: f64) -> DVec3 {
+        let omega = std::f64::consts::TAU * CONTACT_HZ;
+        let (k, c) = (self.mass * omega * omega / self.points, 2.0 * self.mass * omega / self.points);
+        let vn = v.dot(normal);
+        let push = (k * depth - c * vn).max(0.0);
+        let mut f = normal * push;
+        let slide = v - normal * vn;
+        let speed = slide.length();
+        if speed > 0.0 {
+            f -= slide / speed * (self.friction * push).min(self.mass * speed / (self.points * self.dt));
+        }
+        f
+    }
 }
