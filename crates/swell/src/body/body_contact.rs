@@ -77,7 +77,7 @@ pub(super) fn contact_loads(bodies: &[FloatingBody], dt: f64) -> Vec<Load> {
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
         .filter(|&(i, j)| {
             let (a, b) = (&bodies[i], &bodies[j]);
-            let reach = f64::from(a.hull.radius() + b.hull.radius());
+            let reach = f64::from(a.radius + b.radius);
             (a.state.position - b.state.position).length_squared() < reach * reach
         })
         .collect();
@@ -86,18 +86,14 @@ pub(super) fn contact_loads(bodies: &[FloatingBody], dt: f64) -> Vec<Load> {
         .map(|&(i, j)| {
             let (on_i, on_j) = pair_loads(&bodies[i], &bodies[j], dt);
             let (back_j, back_i) = pair_loads(&bodies[j], &bodies[i], dt);
-            (i, j, add(on_i, back_i), add(on_j, back_j))
+            (i, j, on_i + back_i, on_j + back_j)
         })
         .collect();
     for (i, j, li, lj) in forces {
-        loads[i] = add(loads[i], li);
-        loads[j] = add(loads[j], lj);
+        loads[i] += li;
+        loads[j] += lj;
     }
     loads
-}
-
-fn add(a: Load, b: Load) -> Load {
-    Load { force: a.force + b.force, torque: a.torque + b.torque }
 }
 
 /// The loads on `a` and on `b` from `a`'s vertices inside `b`.

@@ -20,19 +20,20 @@ pub const CONTACT_HZ: f64 = 5.0;
 const NORMAL_STEP_M: f32 = 0.1;
 
 /// The ground's load on `body` at its current state over a step of `dt` seconds, and how many
-/// hull vertices touch it.
+/// hull vertices touch it. The hull's world vertices and the ground under each are those the
+/// water's load of the same step sampled ([`super::water_forces::water_load`], evaluated first).
 pub(super) fn ground_load<E: BodyEnvironment + ?Sized>(body: &FloatingBody, env: &E, dt: f64) -> (Load, u32) {
     let s = body.state;
     let mut load = Load::default();
     // First the touching vertices, so that the body's stiffness is shared among them.
     let touching: Vec<(DVec3, f64, DVec3)> = body
-        .hull
-        .positions
+        .corners
         .iter()
-        .filter_map(|p| {
-            let world = s.position + s.orientation * p.as_dvec3();
+        .zip(&body.grounds)
+        .filter_map(|(corner, ground)| {
+            let world = corner.position;
             let (x, z) = (world.x as f32, world.z as f32);
-            let g = env.ground_height(x, z)?;
+            let g = (*ground)?;
             let depth = f64::from(g) - world.y;
             (depth > 0.0).then(|| {
                 let h = NORMAL_STEP_M;

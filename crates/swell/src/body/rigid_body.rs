@@ -52,6 +52,21 @@ pub struct Load {
     pub torque: DVec3,
 }
 
+impl std::ops::Add for Load {
+    type Output = Load;
+
+    /// Both loads acting together.
+    fn add(self, other: Load) -> Load {
+        Load { force: self.force + other.force, torque: self.torque + other.torque }
+    }
+}
+
+impl std::ops::AddAssign for Load {
+    fn add_assign(&mut self, other: Load) {
+        *self = *self + other;
+    }
+}
+
 /// What the last load evaluation found, for tests and overlays.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LoadReport {
@@ -88,6 +103,14 @@ pub struct FloatingBody {
     pub report: LoadReport,
     /// Per-vertex scratch reused every step (no allocation after the first).
     pub(super) corners: Vec<super::water_forces::Corner>,
+    /// Per hull vertex, the ground height under it at the last step (`None` off the terrain), as
+    /// the water's load sampled it for the ground's.
+    pub(super) grounds: Vec<Option<f32>>,
+    /// Largest distance (m) of a hull vertex from the centre of mass: the bounding sphere that
+    /// finds contacts between bodies.
+    pub(super) radius: f32,
+    /// Half the diagonal (m) of the hull's box: the lever the drag's torque limit allows.
+    pub(super) reach: f64,
     /// Per hull vertex, the rest point (water model's frame) of the water above it at the last
     /// step: where the next step's height query starts. NaN before the first step and after a
     /// reset, so a run from t = 0 repeats exactly.
@@ -116,6 +139,12 @@ impl FloatingBody {
             corners: Vec::with_capacity(hull.positions.len()),
             planes: super::body_contact::FacePlanes::of(&hull),
             rests: Vec::new(),
+            grounds: Vec::with_capacity(hull.positions.len()),
+            radius: hull.radius(),
+            reach: {
+                let (lo, hi) = hull.bounds();
+                f64::from((hi - lo).length()) * 0.5
+            },
             hull,
             material,
             inverse_inertia,
@@ -142,20 +171,20 @@ impl FloatingBody {
             self.report = LoadReport::default();
             return;
         }
-        let g = f64::from(crate::GRAVITY);
-        let mut load = Load { force: DVec3::new(0.0, -g * self.material.mass, 0.0), torque: DVec3::ZERO };
+        let gravity = DVec3::new(0.0, -f64::from(crate::GRAVITY) * self.material.mass, 0.0);
+        // The water's first: it samples the hull's vertices and the ground under them.
         let water = super::water_forces::water_load(self, env, t, water_density, dt);
         let ground = super::ground_contact::ground_load(self, env, dt);
-        load.force += water.0.force + ground.0.force + self.thrust;
-        load.torque += water.0.torque + ground.0.torque;
         self.report = LoadReport { submerged_volume: water.1, ground_contacts: ground.1 };
-        self.load = load;
+        self.load = Load {
+            force: gravity + (water.0.force + ground.0.force + self.thrust),
+            torque: water.0.torque + ground.0.torque,
+        };
     }
 
     /// Adds `extra` to the load of the current state (another body's contact).
     pub(super) fn add_load(&mut self, extra: Load) {
-        self.load.force += extra.force;
-        self.load.torque += extra.torque;
+        self.load += extra;
     }
 
     /// Whether the body is still held at time `t` (s): before its release time.

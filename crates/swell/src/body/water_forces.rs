@@ -27,7 +27,7 @@ const DRY_DEPTH_M: f64 = -1.0e3;
 /// (positive under water) and the water's velocity there.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Corner {
-    position: DVec3,
+    pub(super) position: DVec3,
     depth: f64,
     water_velocity: DVec3,
 }
@@ -84,13 +84,17 @@ pub(super) fn water_load<E: BodyEnvironment + ?Sized>(
     let s = body.state;
     let mut corners = std::mem::take(&mut body.corners);
     corners.clear();
+    body.grounds.clear();
     body.rests.resize(body.hull.positions.len(), glam::Vec2::NAN);
     for (p, rest) in body.hull.positions.iter().zip(&mut body.rests) {
         let world = s.position + s.orientation * p.as_dvec3();
         let (x, z) = (world.x as f32, world.z as f32);
+        // Kept for the ground's contacts, which the same step evaluates next.
+        let ground = env.ground_height(x, z);
+        body.grounds.push(ground);
         let corner = match env.water_height_near(x, z, t, rest) {
             // Ground above the water there means no water: a wave does not run through a dune.
-            Some(h) if env.ground_height(x, z).is_none_or(|g| g < h) => Corner {
+            Some(h) if ground.is_none_or(|g| g < h) => Corner {
                 position: world,
                 depth: f64::from(h) - world.y,
                 water_velocity: env.water_velocity(x, z, t).as_dvec3(),
@@ -159,16 +163,13 @@ pub(super) fn water_load<E: BodyEnvironment + ?Sized>(
         let tq = drag.torque.length() * dt;
         if tq > 0.0 {
             let inertia = body.world_inertia(s.orientation);
-            let (lo, hi) = body.hull.bounds();
-            let reach = f64::from((hi - lo).length()) * 0.5;
-            let most = (inertia * w).length() + m * rel.length() * reach;
+            let most = (inertia * w).length() + m * rel.length() * body.reach;
             if tq > most {
                 drag.torque *= most / tq;
             }
         }
     }
-    let load = Load { force: pressure.force + drag.force, torque: pressure.torque + drag.torque };
-    (load, pressure.force.y / (rho * g))
+    (pressure + drag, pressure.force.y / (rho * g))
 }
 
 /// The signed volume (m³) of `positions` (a closed, outward-wound triangle soup given as
