@@ -245,6 +245,11 @@ fn a_body_dropped_into_a_running_world_replays_from_its_saved_scene() {
     let mut twin = swell::body::BodySpec::new(swell::body::BodyShape::Sphere, &[0.3], glam::Vec3::Y);
     twin.name = "crate".into();
     assert!(live.add_body(twin).unwrap_err().to_string().contains("body[4].name"));
+    // Too light to step is refused naming the index it would have had, not body[0].
+    let mut foam = swell::body::BodySpec::new(swell::body::BodyShape::Sphere, &[0.03], glam::Vec3::Y);
+    foam.density = Some(20.0);
+    let e = live.add_body(foam).unwrap_err().to_string();
+    assert!(e.contains("body[4].mass"), "{e}");
     // A push moves a body; taking it away leaves it to the water.
     let before = live.body_poses()[0].position;
     live.bodies.bodies_mut()[0].thrust = glam::DVec3::new(2000.0, 0.0, 0.0);

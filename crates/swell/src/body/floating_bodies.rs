@@ -50,24 +50,8 @@ impl FloatingBodies {
         let (lo, hi) = WATER_DENSITY_RANGE;
         crate::error::check_range("water.density", water_density, lo, hi)?;
         let rho = f64::from(water_density);
-        let dt = 1.0 / f64::from(BODY_STEP_HZ);
         for (i, b) in bodies.iter().enumerate() {
-            // The stiffest the water can be: its largest cross-section at the water line.
-            let (lo, hi) = b.hull.bounds();
-            let e = (hi - lo).as_dvec3();
-            let area = (e.x * e.y).max(e.y * e.z).max(e.x * e.z);
-            let omega = (rho * f64::from(crate::GRAVITY) * area / b.material.mass).sqrt();
-            if omega * dt > MAX_HEAVE_OMEGA_DT {
-                let least = rho * f64::from(crate::GRAVITY) * area * (dt / MAX_HEAVE_OMEGA_DT).powi(2);
-                return Err(Error::out_of_range(
-                    format!("body[{i}].mass"),
-                    format!("{:.4} kg", b.material.mass),
-                    format!(
-                        "[{least:.4}, inf) kg: lighter, \"{}\" would bob faster than the {BODY_STEP_HZ} Hz step follows (make it denser or larger)",
-                        b.name
-                    ),
-                ));
-            }
+            check_steppable(b, i, rho)?;
         }
         Ok(Self { bodies, water_density: rho, steps: 0, loaded: false })
     }
@@ -114,12 +98,11 @@ impl FloatingBodies {
         &mut self.bodies
     }
 
-    /// Adds `body` (checked like [`FloatingBodies::new`]'s, `key` naming it) after the others; it
+    /// Adds `body` (checked like [`FloatingBodies::new`]'s, named `body[k]`, k its index) after the others; it
     /// joins at the next step. Give it a release time after the current step's time
     /// ([`FloatingBody::release_time`]) for a run from t = 0 to move it exactly as this one will.
-    pub fn push(&mut self, body: FloatingBody) -> Result<()> {
-        let mut one = Self::new(vec![body], self.water_density as f32)?;
-        let mut body = one.bodies.pop().expect("one body");
+    pub fn push(&mut self, mut body: FloatingBody) -> Result<()> {
+        check_steppable(&body, self.bodies.len(), self.water_density)?;
         // Held until the next step: the current step's loads are evaluated already.
         body.release_time = body.release_time.max(Self::step_time(self.steps + 1));
         self.bodies.push(body);
@@ -211,6 +194,29 @@ impl FloatingBodies {
                 .collect(),
         )
     }
+}
+
+/// Refuses body `i` if it is so light for its size that, on water of density `rho` (kg/m³), it
+/// would bob faster than the 120 Hz step can follow, naming `body[i].mass` and the least mass.
+fn check_steppable(b: &FloatingBody, i: usize, rho: f64) -> Result<()> {
+    let dt = 1.0 / f64::from(BODY_STEP_HZ);
+    // The stiffest the water can be: its largest cross-section at the water line.
+    let (lo, hi) = b.hull.bounds();
+    let e = (hi - lo).as_dvec3();
+    let area = (e.x * e.y).max(e.y * e.z).max(e.x * e.z);
+    let omega = (rho * f64::from(crate::GRAVITY) * area / b.material.mass).sqrt();
+    if omega * dt <= MAX_HEAVE_OMEGA_DT {
+        return Ok(());
+    }
+    let least = rho * f64::from(crate::GRAVITY) * area * (dt / MAX_HEAVE_OMEGA_DT).powi(2);
+    Err(Error::out_of_range(
+        format!("body[{i}].mass"),
+        format!("{:.4} kg", b.material.mass),
+        format!(
+            "[{least:.4}, inf) kg: lighter, \"{}\" would bob faster than the {BODY_STEP_HZ} Hz step follows (make it denser or larger)",
+            b.name
+        ),
+    ))
 }
 
 fn state_is_finite(s: &super::BodyState) -> bool {
