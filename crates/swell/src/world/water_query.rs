@@ -431,7 +431,7 @@ impl Water {
 /// everywhere for unbounded water, else whether the local point `local` gives (computed only for
 /// a patch) lies in the patch's rectangle, edges included. An f32 local point widened to f64
 /// compares exactly as it would in f32.
-fn covers(extent: WaterExtent, grid: &GridSpec, local: impl FnOnce() -> DVec2) -> bool {
+pub(super) fn covers(extent: WaterExtent, grid: &GridSpec, local: impl FnOnce() -> DVec2) -> bool {
     match extent {
         WaterExtent::Unbounded => true,
         WaterExtent::Patch => {

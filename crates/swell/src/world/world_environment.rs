@@ -6,7 +6,6 @@ use glam::{Vec2, Vec3};
 use super::{TerrainBody, WaterBody};
 use crate::body::BodyEnvironment;
 use crate::error::Result;
-use crate::scene::WaterExtent;
 
 /// A [`World`](super::World)'s water and terrain for [`crate::body::FloatingBodies::advance`]:
 /// `prepare` moves the wave model to each body step's time, the heights and velocities are the
@@ -36,12 +35,10 @@ impl BodyEnvironment for WorldEnvironment<'_> {
     fn water_height_near(&self, x: f32, z: f32, t: f64, rest: &mut Vec2) -> Option<f32> {
         let w = self.water.as_deref()?;
         let local = w.placement.to_local_xz(Vec2::new(x, z));
-        if w.extent == WaterExtent::Patch {
-            // A finite patch (a pool, a spring lattice, a river's reach) holds water only over itself.
-            let (lo, hi) = (w.patch_grid.origin, w.patch_grid.origin + w.patch_grid.size);
-            if !(local.cmpge(lo).all() && local.cmple(hi).all()) {
-                return None;
-            }
+        // A finite patch (a pool, a spring lattice, a river's reach) holds water only over
+        // itself, as the query API says (`Water::has_water_at`).
+        if !super::water_query::covers(w.extent, &w.patch_grid, || local.as_dvec2()) {
+            return None;
         }
         let h = w.placement.to_world_height(w.model.height_near(local.x, local.y, t, rest));
         h.is_finite().then_some(h)
