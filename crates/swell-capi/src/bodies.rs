@@ -10,10 +10,9 @@
 use std::ffi::c_char;
 
 use glam::{DVec3, Vec3};
-use swell_lib::body::{BodyShape, BodySpec, FloatingBodies};
+use swell_lib::body::{BodyShape, BodySpec};
 use swell_lib::error::Human;
 use swell_lib::limits::MAX_TIME_S;
-use swell_lib::scene::Scene;
 use swell_lib::world::World;
 use swell_lib::Error;
 
@@ -41,70 +40,10 @@ fn check_index(index: usize, count: usize) -> Result<(), Failure> {
     }
 }
 
-/// The release time of a body added to a world at time `t` (s): the next body step after `t`.
-///
-/// `World::add_body` takes the next step after the bodies' own step, which is the world's time
-/// once the bodies have been stepped; a scene that had no body has never stepped them (its
-/// `advance` skips them) and would release the body at 1/120 s, as if dropped at t = 0. A time
-/// before 0 (a render at a negative time) counts as 0. The Python package does the same.
-fn release_after(t: f64) -> f64 {
-    FloatingBodies::step_time(FloatingBodies::step_at(t.max(0.0)) + 1)
-}
-
 /// Moves the world to `t` (checked by [`check_body_time`]) on the handle's pool.
 fn advance(scene: &SwellScene, world: &mut World, t: f64) -> Result<(), Failure> {
     scene.pool.install(|| world.advance(t))?;
     Ok(())
-}
-
-/// A scene with nothing in it but `bodies`: what a `[[body]]` snippet read alone must equal once
-/// its body is taken out, and the text the scene's bodies are written in before a snippet.
-fn bodies_only(bodies: Vec<BodySpec>) -> Scene {
-    // Parsed rather than built field by field, so that a section added to `Scene` later still
-    // gets its default here.
-    let mut scene =
-        Scene::from_toml("[[body]]\nshape = 'sphere'\nsize = [1.0]\n", "reference").expect("a valid one-body scene");
-    scene.bodies = bodies;
-    scene
-}
-
-/// The one `[[body]]` table of `text` (header included, as a scene file holds it), read as body
-/// number `k = scene.bodies.len()` of `scene`. Errors name the key as the scene would once the body
-/// is in it (`toml: body[3].size: [1.0, 0.5] has 2 values; ...`); TOML syntax errors count the lines
-/// of `text`.
-fn body_from_toml(scene: &Scene, text: &str) -> swell_lib::Result<BodySpec> {
-    let k = scene.bodies.len();
-    let first = match Scene::from_toml(text, SOURCE) {
-        Ok(mut own) => {
-            let n = own.bodies.len();
-            let spec = own.bodies.pop();
-            own.bodies.clear();
-            return match spec {
-                Some(spec) if n == 1 && own == bodies_only(Vec::new()) => Ok(spec),
-                _ => Err(Error::Parse {
-                    path: SOURCE.into(),
-                    message: format!(
-                        "holds {n} [[body]] table{}{}; give exactly one [[body]] table (its header and keys) and nothing else",
-                        if n == 1 { "" } else { "s" },
-                        if own == bodies_only(Vec::new()) { "" } else { " and other sections" }
-                    ),
-                }),
-            };
-        }
-        Err(e) => e,
-    };
-    // Read alone, the snippet's body is body[0]: read it again after the scene's bodies so that a
-    // key error names body[k], the body it would be. That reading is used only when it names
-    // body[k] (a snippet that also holds other keys could be read differently there).
-    if k > 0 && first.to_string().contains("body[0]") {
-        let after = format!("{}\n{text}", bodies_only(scene.bodies.clone()).to_toml());
-        if let Err(e) = Scene::from_toml(&after, SOURCE) {
-            if e.to_string().contains(&format!("body[{k}]")) {
-                return Err(e);
-            }
-        }
-    }
-    Err(first)
 }
 
 /// How many floating bodies (`[[body]]`) the scene has, added ones included: `*count`, in
@@ -300,8 +239,8 @@ pub unsafe extern "C" fn swell_scene_add_body_toml(
         // SAFETY: the caller promises a NUL-terminated string.
         let snippet = unsafe { text("toml", toml)? };
         let mut state = lock(&s.inner);
-        let mut spec = body_from_toml(&state.world.scene, snippet)?;
-        spec.release_time = spec.release_time.max(release_after(state.world.time()));
+        // Released at the next body step after the world's time (World::add_body).
+        let spec = state.world.scene.body_from_toml(snippet, SOURCE)?;
         let k = state.world.add_body(spec).map_err(|e| e.in_source(SOURCE))?;
         if !index.is_null() {
             // SAFETY: not NULL; the caller promises it is writable.
@@ -362,7 +301,6 @@ pub unsafe extern "C" fn swell_scene_add_body(
         spec.name = name.to_string();
         spec.density = Some(density as f32);
         let mut state = lock(&s.inner);
-        spec.release_time = release_after(state.world.time());
         let k = state.world.add_body(spec).map_err(|e| {
             // The keys of this body are this function's arguments, not a scene's text.
             let Failure(code, message) = Failure::from(e);

@@ -537,7 +537,7 @@ fn a_scene_without_bodies_has_none_and_takes_one_at_its_time() {
     let mut size = 0;
     let code = unsafe { swell_scene_body_name(s, 0, null_mut(), 0, &mut size) };
     assert_eq!((code, last_error().as_str()), (SwellResult::InvalidArgument, "index: 0; the scene has no bodies"));
-    // A body added at t = 3 s is dropped then, not at t = 0 (the scene never stepped bodies).
+    // A body added at t = 3 s is dropped then, not at t = 0 (a world without bodies still counts their steps).
     assert_eq!(unsafe { swell_scene_advance(s, 3.0) }, SwellResult::Ok);
     let (shape, size) = (CString::new("box").unwrap(), [2.0, 0.5, 2.0]);
     let r =

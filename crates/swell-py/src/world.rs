@@ -10,7 +10,6 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyIndexError, PyKeyError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use swell::body::{BodySpec, FloatingBodies};
 use swell::error::Human;
 use swell::limits::MAX_TIME_S;
 use swell::scene::Scene;
@@ -35,66 +34,6 @@ fn check_body_time(t: f64) -> PyResult<()> {
     }
     let range = format!("[0, {MAX_TIME_S:e}] seconds (floating bodies start at t = 0)");
     Err(py_err(swell::Error::out_of_range("t", Human(t), range)))
-}
-
-/// A scene with nothing in it but `bodies`: what a `[[body]]` snippet read alone must equal once
-/// its body is taken out, and the text the world's bodies are written in before a snippet.
-fn bodies_only(bodies: Vec<BodySpec>) -> Scene {
-    // Parsed rather than built field by field, so that a section added to `Scene` later still
-    // gets its default here.
-    let mut scene =
-        Scene::from_toml("[[body]]\nshape = 'sphere'\nsize = [1.0]\n", "reference").expect("a valid one-body scene");
-    scene.bodies = bodies;
-    scene
-}
-
-/// The one `[[body]]` table of `text` (header included), read as body number
-/// `k = scene.bodies.len()`, `source` naming the text in errors. Errors name the key as the scene
-/// would once the body is in it (`body[3].size`); TOML syntax errors count the lines of `text`.
-/// The C API's `body_from_toml` (crates/swell-capi/src/bodies.rs), to the letter: the same text
-/// is refused with the same message from both.
-fn body_from_toml(scene: &Scene, text: &str, source: &str) -> swell::Result<BodySpec> {
-    let k = scene.bodies.len();
-    let first = match Scene::from_toml(text, source) {
-        Ok(mut own) => {
-            let n = own.bodies.len();
-            let spec = own.bodies.pop();
-            own.bodies.clear();
-            return match spec {
-                Some(spec) if n == 1 && own == bodies_only(Vec::new()) => Ok(spec),
-                _ => Err(swell::Error::Parse {
-                    path: source.into(),
-                    message: format!(
-                        "holds {n} [[body]] table{}{}; give exactly one [[body]] table (its header and keys) and nothing else",
-                        if n == 1 { "" } else { "s" },
-                        if own == bodies_only(Vec::new()) { "" } else { " and other sections" }
-                    ),
-                }),
-            };
-        }
-        Err(e) => e,
-    };
-    // Read alone, the snippet's body is body[0]: read it again after the world's bodies so that a
-    // key error names body[k], the body it would be; used only when it does.
-    if k > 0 && first.to_string().contains("body[0]") {
-        let after = format!("{}\n{text}", bodies_only(scene.bodies.clone()).to_toml());
-        if let Err(e) = Scene::from_toml(&after, source) {
-            if e.to_string().contains(&format!("body[{k}]")) {
-                return Err(e);
-            }
-        }
-    }
-    Err(first)
-}
-
-/// The release time of a body added to a world at time `t` (s): the next body step after `t`.
-///
-/// `World::add_body` takes the next step after the bodies' own step, which is the world's time
-/// once the bodies have been stepped; a world that had no body has never stepped them (its
-/// `advance` skips them) and would release the body at 1/120 s, as if dropped at t = 0. The C API
-/// (crates/swell-capi/src/bodies.rs) does the same.
-fn release_after(t: f64) -> f64 {
-    FloatingBodies::step_time(FloatingBodies::step_at(t.max(0.0)) + 1)
 }
 
 /// A keyword argument of `add_body` as a TOML value, `key` naming it in errors: booleans,
@@ -286,15 +225,10 @@ impl World {
         };
         py.allow_threads(|| {
             let mut w = self.lock();
-            let mut spec = body_from_toml(&w.scene, &text, source)?;
-            spec.release_time = spec.release_time.max(release_after(w.time()));
-            let k = w.add_body(spec).map_err(|e| e.in_source(source))?;
-            // `World::body_poses` are those of the last advance, without the new body: moved to
-            // its own time again (no step is taken where the bodies are already there), the
-            // world has the new body's pose too, held at its initial one.
-            let t = w.time();
-            w.advance(t)?;
-            Ok(k)
+            // Released at the next body step after the world's time, posed at once
+            // (World::add_body).
+            let spec = w.scene.body_from_toml(&text, source)?;
+            w.add_body(spec).map_err(|e| e.in_source(source))
         })
         .map_err(py_err)
     }

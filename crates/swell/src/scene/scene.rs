@@ -57,6 +57,17 @@ struct SceneFile {
     bodies: Vec<BodySpec>,
 }
 
+/// A scene with nothing in it but `bodies`: what a `[[body]]` snippet read alone must equal once
+/// its body is taken out ([`Scene::body_from_toml`]), and the text a scene's bodies are written in
+/// before a snippet. Parsed rather than built field by field, so that a section added to `Scene`
+/// later still gets its default here.
+fn bodies_only(bodies: Vec<BodySpec>) -> Scene {
+    let mut scene =
+        Scene::from_toml("[[body]]\nshape = 'sphere'\nsize = [1.0]\n", "reference").expect("a valid one-body scene");
+    scene.bodies = bodies;
+    scene
+}
+
 /// `version` when a file leaves it out: the current one.
 fn current_version() -> u32 {
     SCENE_VERSION
@@ -248,6 +259,48 @@ impl Scene {
     pub fn water_extent(&self) -> Option<super::WaterExtent> {
         let w = self.water.as_ref()?;
         Some(w.surface.extent.unwrap_or_else(|| super::WaterExtent::default_for(&w.model, false)))
+    }
+
+    /// The one `[[body]]` table of `text` (header included, as a scene file holds it), read as
+    /// body number `k = self.bodies.len()` of this scene, `source` naming the text in errors: what
+    /// the C API and the Python package take to add a body. Refuses text with no `[[body]]`,
+    /// several, or other sections. Key errors name the key as this scene would once the body is
+    /// in it (`body[3].size`); TOML syntax errors count the lines of `text`. Relative paths are
+    /// left as given.
+    pub fn body_from_toml(&self, text: &str, source: &str) -> Result<BodySpec> {
+        let k = self.bodies.len();
+        let first = match Scene::from_toml(text, source) {
+            Ok(mut own) => {
+                let n = own.bodies.len();
+                let spec = own.bodies.pop();
+                own.bodies.clear();
+                let alone = own == bodies_only(Vec::new());
+                return match spec {
+                    Some(spec) if n == 1 && alone => Ok(spec),
+                    _ => Err(Error::Parse {
+                        path: source.into(),
+                        message: format!(
+                            "holds {n} [[body]] table{}{}; give exactly one [[body]] table (its header and keys) and nothing else",
+                            if n == 1 { "" } else { "s" },
+                            if alone { "" } else { " and other sections" }
+                        ),
+                    }),
+                };
+            }
+            Err(e) => e,
+        };
+        // Read alone, the snippet's body is body[0]: read it again after this scene's bodies so
+        // that a key error names body[k], the body it would be. That reading is used only when it
+        // names body[k] (a snippet that also holds other keys could be read differently there).
+        if k > 0 && first.to_string().contains("body[0]") {
+            let after = format!("{}\n{text}", bodies_only(self.bodies.clone()).to_toml());
+            if let Err(e) = Scene::from_toml(&after, source) {
+                if e.to_string().contains(&format!("body[{k}]")) {
+                    return Err(e);
+                }
+            }
+        }
+        Err(first)
     }
 
     /// Makes relative file paths in the scene (heightmaps, water textures, spectrum files) relative to `dir`, the
