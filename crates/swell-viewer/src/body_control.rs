@@ -11,7 +11,7 @@
 //! frame's request and gone when the keys are let go.
 
 use glam::{DQuat, DVec3, EulerRot, Vec2, Vec3};
-use swell::body::{BodyShape, BodySpec, StillWater};
+use swell::body::{BodyShape, BodySpec};
 use swell::scene::Camera;
 use swell::world::World;
 use swell::{Error, Result};
@@ -143,14 +143,7 @@ pub fn drop_into(world: &mut World, drop: &BodyDrop) -> Result<BodySpec> {
     let below = depth_below_centre(&spec, &key)?;
     let surface = surface_height(world, at.x, at.z).unwrap_or(0.0);
     spec.position = Vec3::new(at.x, surface + DROP_CLEARANCE_M + below, at.z);
-    if world.bodies.is_empty() {
-        // `World::add_body` releases the body at the step after the bodies' own step count, which
-        // `World::advance` leaves at 0 while there are no bodies: the first drop would be released
-        // at 1/120 s and stepped (with the water model taken back to t = 0, which resets a spring
-        // mesh) all the way to now. An empty set advanced alone only moves its count to the
-        // world's time; the still water it is given is never asked (there is no body to ask).
-        world.bodies.advance(world.time(), &mut StillWater)?;
-    }
+    // Released at the next body step after the world's time, even into a world that had no body.
     let k = world.add_body(spec)?;
     Ok(world.scene.bodies[k].clone())
 }
