@@ -7,7 +7,7 @@ use glam::{DMat3, DQuat, DVec3, EulerRot, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::{FloatingBody, Hull};
-use crate::error::{check_finite_vec, check_non_negative, check_range, Error, Result};
+use crate::error::{check_finite_vec, check_range, Error, Result};
 
 crate::closed_set! {
     /// The shape of a floating body's hull.
@@ -256,7 +256,7 @@ impl BodySpec {
         for (k, v) in self.color.to_array().into_iter().enumerate() {
             check_range(&format!("{key}.color[{k}]"), v, 0.0, 1.0)?;
         }
-        check_non_negative(&format!("{key}.drag"), self.drag)
+        Ok(())
     }
 
     /// Makes a relative `path` relative to `dir` (the scene file's directory).
